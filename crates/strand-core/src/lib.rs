@@ -1,0 +1,19 @@
+//! Constitutive core of `strand`: strand geometry and materials ([`geometry`], SPEC 1) and the
+//! stick/slip section laws of the equivalent beam ([`section`], SPEC 2).
+//!
+//! Equation numbers "(n)" in the documentation are those of Guo, Wei, Tan, Zhao (2018),
+//! "Analysis of the cored stranded wire rope on the nonlinear bending dynamic
+//! characteristics", Chinese J. Theor. Appl. Mech. 50(2):373-384.
+
+pub mod error;
+pub mod geometry;
+pub mod section;
+
+pub use error::InputError;
+pub use geometry::{
+    DEFAULT_FRICTION, HelixLayer, LayDirection, LayerSpec, Material, Strand, StrandSpec,
+    TraditionalBeam, WireSpec,
+};
+pub use section::{
+    LawKind, PlanarResponse, SectionLaw, SectionResponse, Station, WireReport, WireState,
+};

@@ -1,0 +1,520 @@
+//! Section laws of the equivalent beam (SPEC 2; paper sections 1.2, 1.3).
+//!
+//! A [`SectionLaw`] maps the axial strain `eps`, the bending curvature and the material
+//! coordinate `x` to the axial force, the bending moment, their tangents and the stored energy
+//! density. Four laws share one implementation ([`LawKind`]): the helical wires are friction
+//! sliders ([`slider`]) whose force laws differ; `constant` has no sliders.
+//!
+//! # Section frame, curvature vector and wire phases
+//!
+//! The cross-section carries a right-handed frame (t, y, z) with t the strand tangent. Wire
+//! `i` sits at `(y, z) = R_w (sin phi_i, cos phi_i)` (eq. (1)), with `phi_i(x)` from eqs. (36),
+//! (37). The curvature vector `kappa = (kappa_y, kappa_z)` holds the bending curvatures about
+//! y and z, so the bending strain of a fibre at (y, z) is `z kappa_y - y kappa_z`, and wire `i`
+//! has the lever `l_i = R_w (cos phi_i, -sin phi_i)`: its bending strain is `e_i = l_i . kappa`
+//! and its force `F_i` adds `F_i l_i` to the moment vector.
+//!
+//! A planar scene moves in the global XY plane with z = global Z; the signed planar curvature
+//! `kappa = (r' x r'')_Z / |r'|^3` is `kappa_z`. Bending with the convex side toward +y
+//! (curvature centre toward -y, `kappa_z < 0`, the paper's hanging cantilever) uses the phases
+//! of eq. (36) as they are; bending the other way mirrors them, phi -> -phi (SPEC 2).
+//!
+//! The friction limit of a wire grows with its angle theta from the neutral axis through the
+//! capstan gain of eq. (20): `exp(mu theta sin(alpha)) - 1` for a stretched wire and
+//! `1 - exp(-mu theta sin(alpha))` for a shortened one (eq. (20) with the sign of the wire's
+//! side). The neutral axis is the line along `kappa` in the section; its reference half is the
+//! one with a non-negative z component (the +y half when `kappa_z = 0`). For planar bending
+//! this is the +z axis in both senses, which is exactly the SPEC 2 mirror convention; for
+//! general 3D bending it changes sides when `kappa_z` changes sign, so the limits of the
+//! (already asymmetric) paper law jump there. Only the lever and the side of the wire enter the
+//! `continuous`, `paper` and `hysteretic` laws; K_min and the axial stiffness are isotropic.
+
+mod slider;
+
+pub use slider::WireState;
+use slider::{SliderForce, slider};
+
+use crate::geometry::Strand;
+
+/// Which section law a beam uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LawKind {
+    /// Stick/slip with the continuous critical curvature kappa_c = M_slip / K_stick (default).
+    #[default]
+    Continuous,
+    /// The paper's eq. (23) critical curvature: the moment drops by cos^2(alpha) at a switch.
+    Paper,
+    /// Coulomb friction with committed slip state, return mapping and dissipated work.
+    Hysteretic,
+    /// Constant EI and EA of the envelope cylinder: the traditional beam.
+    Constant,
+}
+
+impl LawKind {
+    /// Name as used in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            LawKind::Continuous => "continuous",
+            LawKind::Paper => "paper",
+            LawKind::Hysteretic => "hysteretic",
+            LawKind::Constant => "constant",
+        }
+    }
+
+    /// Whether the law carries slip state that a solver must commit on accepted steps.
+    pub fn has_state(self) -> bool {
+        self == LawKind::Hysteretic
+    }
+}
+
+impl std::fmt::Display for LawKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// The helical layer's constants as the section law uses them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct LayerLaw {
+    wires: usize,
+    radius: f64,
+    /// eta E_w A_w (N).
+    k: f64,
+    /// eta A_w E_w cos^2(alpha) (N): friction limit per unit strand strain and unit gain.
+    cap_per_strain: f64,
+    /// mu sin(alpha).
+    capstan: f64,
+    /// cos^2(alpha).
+    paper_factor: f64,
+}
+
+/// A section law built for one strand.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SectionLaw {
+    kind: LawKind,
+    axial_stiffness: f64,
+    base_bending: f64,
+    layer: Option<LayerLaw>,
+    strand: Strand,
+}
+
+/// One wire at one station: its phase and the quantities that depend only on it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WireStation {
+    /// Phase phi_i(x) wrapped to (-pi, pi] (rad).
+    pub phase: f64,
+    /// Unit position in the section (sin phi, cos phi).
+    position: [f64; 2],
+    /// Lever R_w (cos phi, -sin phi) (m).
+    lever: [f64; 2],
+    /// Planar capstan gains for theta = |phi|: (stretched, shortened).
+    gains: [f64; 2],
+}
+
+/// The section law's precomputed data at one material coordinate. Build stations once per
+/// integration point; evaluating at a station is allocation-free.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Station {
+    /// Material coordinate x (m).
+    pub x: f64,
+    /// Helical wires at this station.
+    pub wires: Vec<WireStation>,
+}
+
+/// Response of the section to a strain and a curvature vector (units: N, N m, J/m).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SectionResponse {
+    /// Axial force N = EA eps (N).
+    pub axial_force: f64,
+    /// dN/deps (N).
+    pub axial_stiffness: f64,
+    /// Bending moment vector (M_y, M_z) (N m).
+    pub moment: [f64; 2],
+    /// dM_a / dkappa_b (N m^2).
+    pub moment_curvature: [[f64; 2]; 2],
+    /// dM / deps (N m).
+    pub moment_strain: [f64; 2],
+    /// Stored energy density (J/m).
+    pub energy: f64,
+    /// Work dissipated by slip from the committed state to this trial (J/m; hysteretic law).
+    pub slip_work: f64,
+    /// Number of slipping wires.
+    pub slipping: usize,
+}
+
+/// Response of the section to a strain and a signed planar curvature (units: N, N m, J/m).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PlanarResponse {
+    /// Axial force N = EA eps (N).
+    pub axial_force: f64,
+    /// dN/deps (N).
+    pub axial_stiffness: f64,
+    /// Bending moment M_z, same sign as the curvature (N m).
+    pub moment: f64,
+    /// dM/dkappa (N m^2).
+    pub moment_curvature: f64,
+    /// dM/deps (N m).
+    pub moment_strain: f64,
+    /// Stored energy density (J/m).
+    pub energy: f64,
+    /// Work dissipated by slip from the committed state to this trial (J/m; hysteretic law).
+    pub slip_work: f64,
+    /// Number of slipping wires.
+    pub slipping: usize,
+}
+
+/// One wire's state for reports (SPEC 6 `wires.csv`, `strand section`).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct WireReport {
+    /// Wire number, 1-based as in the paper.
+    pub wire: usize,
+    /// Phase phi_i(x) in (-pi, pi] (rad).
+    pub phase: f64,
+    /// Stick stiffness K_stick_i = eta E_w A_w (R_w sin theta)^2 for this bending direction
+    /// (N m^2), eq. (22a).
+    pub k_stick: f64,
+    /// Friction-limited moment M_slip_i (N m), eq. (22b) times kappa.
+    pub m_slip: f64,
+    /// Critical curvature kappa_c_i (1/m); `None` where the wire has no lever (it never slips).
+    pub critical_curvature: Option<f64>,
+    /// Stick or slip at the given curvature.
+    pub state: WireState,
+}
+
+impl SectionLaw {
+    /// Builds the law of `kind` for `strand`. `constant` uses the traditional beam's EI and
+    /// EA; the others use EA_eq, K_min and the helical layer.
+    pub fn new(strand: &Strand, kind: LawKind) -> Self {
+        let (axial_stiffness, base_bending) = match kind {
+            LawKind::Constant => {
+                let t = strand.traditional();
+                (t.axial_stiffness, t.bending_stiffness)
+            }
+            _ => (strand.axial_stiffness(), strand.min_bending_stiffness()),
+        };
+        let layer = match kind {
+            LawKind::Constant => None,
+            _ => strand.layer().map(|l| {
+                let a = l.lay_angle();
+                let w = &l.spec.wire;
+                let c2 = a.cos().powi(2);
+                LayerLaw {
+                    wires: l.wires(),
+                    radius: l.radius,
+                    k: l.wire_axial_stiffness(),
+                    cap_per_strain: l.eta * w.area() * w.material.youngs_modulus * c2,
+                    capstan: strand.friction() * a.sin(),
+                    paper_factor: c2,
+                }
+            }),
+        };
+        SectionLaw {
+            kind,
+            axial_stiffness,
+            base_bending,
+            layer,
+            strand: strand.clone(),
+        }
+    }
+
+    /// Builds a `constant` law with given stiffnesses (a traditional beam of any EI, EA).
+    pub fn constant(strand: &Strand, bending_stiffness: f64, axial_stiffness: f64) -> Self {
+        SectionLaw {
+            kind: LawKind::Constant,
+            axial_stiffness,
+            base_bending: bending_stiffness,
+            layer: None,
+            strand: strand.clone(),
+        }
+    }
+
+    /// The law's kind.
+    pub fn kind(&self) -> LawKind {
+        self.kind
+    }
+    /// The strand the law was built for.
+    pub fn strand(&self) -> &Strand {
+        &self.strand
+    }
+    /// Axial stiffness EA (N).
+    pub fn axial_stiffness(&self) -> f64 {
+        self.axial_stiffness
+    }
+    /// Bending stiffness with every wire slipping: K_min, or EI for `constant` (N m^2).
+    pub fn base_bending_stiffness(&self) -> f64 {
+        self.base_bending
+    }
+    /// Number of friction sliders per station (0 for `constant` and plain wires).
+    pub fn sliders(&self) -> usize {
+        self.layer.map_or(0, |l| l.wires)
+    }
+    /// Length of the slip-state slice a station needs (hysteretic law; 0 otherwise).
+    pub fn state_len(&self) -> usize {
+        if self.kind.has_state() {
+            self.sliders()
+        } else {
+            0
+        }
+    }
+
+    /// Precomputes the station at material coordinate `x` (m).
+    pub fn station(&self, x: f64) -> Station {
+        let wires = match (self.layer, self.strand.layer()) {
+            (Some(law), Some(h)) => (0..law.wires)
+                .map(|i| {
+                    let phase = h.phase(i, x);
+                    let (s, c) = phase.sin_cos();
+                    let theta = phase.abs();
+                    WireStation {
+                        phase,
+                        position: [s, c],
+                        lever: [law.radius * c, -law.radius * s],
+                        gains: [
+                            (law.capstan * theta).exp_m1(),
+                            -(-law.capstan * theta).exp_m1(),
+                        ],
+                    }
+                })
+                .collect(),
+            _ => Vec::new(),
+        };
+        Station { x, wires }
+    }
+
+    /// Friction limits (stretched, shortened) per unit gain: eta A_w sigma_a (N), with
+    /// sigma_a = E_w cos^2(alpha) eps for eps > 0 and 0 otherwise (SPEC 2), and d/deps.
+    fn cap_scale(&self, eps: f64) -> (f64, f64) {
+        match self.layer {
+            Some(l) if eps > 0.0 => (l.cap_per_strain * eps, l.cap_per_strain),
+            _ => (0.0, 0.0),
+        }
+    }
+
+    /// Evaluates the law for a signed planar curvature `kappa` (1/m, `kappa_z`) at strain
+    /// `eps`. `slip` is the station's committed slip state and `trial` receives the trial state
+    /// (both of length [`Self::state_len`]; empty slices for laws without state).
+    pub fn planar(
+        &self,
+        st: &Station,
+        eps: f64,
+        kappa: f64,
+        slip: &[f64],
+        trial: &mut [f64],
+    ) -> PlanarResponse {
+        let mut r = PlanarResponse {
+            axial_force: self.axial_stiffness * eps,
+            axial_stiffness: self.axial_stiffness,
+            moment: self.base_bending * kappa,
+            moment_curvature: self.base_bending,
+            moment_strain: 0.0,
+            energy: 0.5 * self.axial_stiffness * eps * eps + 0.5 * self.base_bending * kappa * kappa,
+            slip_work: 0.0,
+            slipping: 0,
+        };
+        let Some(law) = self.layer else { return r };
+        let (scale, dscale) = self.cap_scale(eps);
+        for (i, w) in st.wires.iter().enumerate() {
+            let lever = w.lever[1];
+            let f = self.slide(law, i, lever * kappa, scale, w.gains, slip, trial);
+            r.moment += f.force * lever;
+            r.moment_curvature += f.d_strain * lever * lever;
+            r.moment_strain +=
+                (f.d_cap_pos * w.gains[0] + f.d_cap_neg * w.gains[1]) * dscale * lever;
+            r.energy += f.energy;
+            r.slip_work += f.slip_work;
+            r.slipping += usize::from(f.state == WireState::Slip);
+        }
+        r
+    }
+
+    /// Evaluates the law for a curvature vector `kappa = (kappa_y, kappa_z)` (1/m) in the
+    /// section frame at strain `eps`; `slip` and `trial` as for [`Self::planar`]. With
+    /// `kappa_y = 0` it agrees with [`Self::planar`].
+    pub fn vector(
+        &self,
+        st: &Station,
+        eps: f64,
+        kappa: [f64; 2],
+        slip: &[f64],
+        trial: &mut [f64],
+    ) -> SectionResponse {
+        let kb = self.base_bending;
+        let kk = kappa[0] * kappa[0] + kappa[1] * kappa[1];
+        let mut r = SectionResponse {
+            axial_force: self.axial_stiffness * eps,
+            axial_stiffness: self.axial_stiffness,
+            moment: [kb * kappa[0], kb * kappa[1]],
+            moment_curvature: [[kb, 0.0], [0.0, kb]],
+            moment_strain: [0.0; 2],
+            energy: 0.5 * self.axial_stiffness * eps * eps + 0.5 * kb * kk,
+            slip_work: 0.0,
+            slipping: 0,
+        };
+        let Some(law) = self.layer else { return r };
+        let (scale, dscale) = self.cap_scale(eps);
+        let knorm = kk.sqrt();
+        let b = neutral_axis(kappa);
+        for (i, w) in st.wires.iter().enumerate() {
+            let l = w.lever;
+            let e = l[0] * kappa[0] + l[1] * kappa[1];
+            // Angle from the reference half of the neutral axis and its gradient in kappa.
+            let (gains, dtheta) = if knorm > 0.0 {
+                let p = w.position;
+                let c = (p[0] * b[0] + p[1] * b[1]).clamp(-1.0, 1.0);
+                let sin_t = (p[0] * b[1] - p[1] * b[0]).abs();
+                let theta = c.acos();
+                let g = [
+                    (law.capstan * theta).exp_m1(),
+                    -(-law.capstan * theta).exp_m1(),
+                ];
+                // d cos(theta)/d kappa = (p - (p.b) b) / |kappa| * sign, b = sign kappa/|kappa|.
+                let dt = if sin_t > 1e-12 {
+                    let s = if b[0] * kappa[0] + b[1] * kappa[1] >= 0.0 { 1.0 } else { -1.0 };
+                    let f = -s / (knorm * sin_t);
+                    [f * (p[0] - c * b[0]), f * (p[1] - c * b[1])]
+                } else {
+                    [0.0; 2]
+                };
+                (g, dt)
+            } else {
+                (w.gains, [0.0; 2])
+            };
+            let f = self.slide(law, i, e, scale, gains, slip, trial);
+            // d cap / d theta for the active side.
+            let theta_gain = if law.capstan > 0.0 {
+                let a = law.capstan;
+                f.d_cap_pos * a * (gains[0] + 1.0) + f.d_cap_neg * a * (1.0 - gains[1])
+            } else {
+                0.0
+            };
+            let df = [
+                f.d_strain * l[0] + scale * theta_gain * dtheta[0],
+                f.d_strain * l[1] + scale * theta_gain * dtheta[1],
+            ];
+            let dfe = (f.d_cap_pos * gains[0] + f.d_cap_neg * gains[1]) * dscale;
+            for a in 0..2 {
+                r.moment[a] += f.force * l[a];
+                r.moment_strain[a] += dfe * l[a];
+                for c in 0..2 {
+                    r.moment_curvature[a][c] += l[a] * df[c];
+                }
+            }
+            r.energy += f.energy;
+            r.slip_work += f.slip_work;
+            r.slipping += usize::from(f.state == WireState::Slip);
+        }
+        r
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn slide(
+        &self,
+        law: LayerLaw,
+        i: usize,
+        e: f64,
+        scale: f64,
+        gains: [f64; 2],
+        slip: &[f64],
+        trial: &mut [f64],
+    ) -> SliderForce {
+        let committed = slip.get(i).copied().unwrap_or(0.0);
+        let f = slider(
+            self.kind,
+            law.k,
+            e,
+            scale * gains[0],
+            scale * gains[1],
+            law.paper_factor,
+            committed,
+        );
+        if let Some(t) = trial.get_mut(i) {
+            *t = f.slip;
+        }
+        f
+    }
+
+    /// Per-wire report for a signed planar curvature (see [`Self::planar`]). At zero
+    /// curvature the report is for bending with the convex side toward +y (`kappa_z < 0`).
+    pub fn planar_wires(
+        &self,
+        st: &Station,
+        eps: f64,
+        kappa: f64,
+        slip: &[f64],
+    ) -> Vec<WireReport> {
+        let Some(law) = self.layer else {
+            return Vec::new();
+        };
+        let (scale, _) = self.cap_scale(eps);
+        let dir = if kappa > 0.0 { 1.0 } else { -1.0 };
+        st.wires
+            .iter()
+            .enumerate()
+            .map(|(i, w)| {
+                let lever = w.lever[1] * dir; // strain per unit |kappa|
+                let arm = lever.abs();
+                let side = if lever >= 0.0 { 0 } else { 1 };
+                let cap = scale * w.gains[side];
+                let f = slider(
+                    self.kind,
+                    law.k,
+                    w.lever[1] * kappa,
+                    scale * w.gains[0],
+                    scale * w.gains[1],
+                    law.paper_factor,
+                    slip.get(i).copied().unwrap_or(0.0),
+                );
+                let factor = if self.kind == LawKind::Paper {
+                    law.paper_factor
+                } else {
+                    1.0
+                };
+                let critical = if arm <= 1e-14 * law.radius {
+                    None
+                } else {
+                    Some(cap / (law.k * factor * arm))
+                };
+                WireReport {
+                    wire: i + 1,
+                    phase: w.phase,
+                    k_stick: law.k * arm * arm,
+                    m_slip: cap * arm,
+                    critical_curvature: critical,
+                    state: f.state,
+                }
+            })
+            .collect()
+    }
+
+    /// Secant bending stiffness |M| / |kappa| for a signed planar curvature (N m^2); at zero
+    /// curvature its limit from the +y-convex side.
+    pub fn planar_secant(&self, st: &Station, eps: f64, kappa: f64, slip: &[f64]) -> f64 {
+        if kappa != 0.0 {
+            let mut trial = vec![0.0; self.state_len()];
+            return self.planar(st, eps, kappa, slip, &mut trial).moment / kappa;
+        }
+        self.base_bending
+            + self
+                .planar_wires(st, eps, kappa, slip)
+                .iter()
+                .filter(|w| w.critical_curvature.is_none_or(|c| c > 0.0))
+                .map(|w| w.k_stick)
+                .sum::<f64>()
+    }
+}
+
+/// Reference half of the neutral axis for a curvature vector: the unit vector along `kappa`
+/// with a non-negative z component (+y when `kappa_z = 0`); +z for zero curvature.
+fn neutral_axis(kappa: [f64; 2]) -> [f64; 2] {
+    let n = (kappa[0] * kappa[0] + kappa[1] * kappa[1]).sqrt();
+    if n == 0.0 {
+        return [0.0, 1.0];
+    }
+    let s = if kappa[1] > 0.0 || (kappa[1] == 0.0 && kappa[0] >= 0.0) {
+        1.0
+    } else {
+        -1.0
+    };
+    [s * kappa[0] / n, s * kappa[1] / n]
+}
