@@ -1,1 +1,230 @@
-fn main() {}
+//! `strand`: the strand calculator and scene runner.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand, ValueEnum};
+use strand_core::{LawKind, SectionPoint, StrandSummary};
+use strand_scene::Scene;
+
+#[derive(Parser)]
+#[command(
+    name = "strand",
+    version,
+    about = "Stranded wire rope statics and dynamics"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum LawArg {
+    Continuous,
+    Paper,
+    Hysteretic,
+    Constant,
+}
+
+impl From<LawArg> for LawKind {
+    fn from(l: LawArg) -> Self {
+        match l {
+            LawArg::Continuous => LawKind::Continuous,
+            LawArg::Paper => LawKind::Paper,
+            LawArg::Hysteretic => LawKind::Hysteretic,
+            LawArg::Constant => LawKind::Constant,
+        }
+    }
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Print the strand's derived quantities and, given strain and curvature, the section's
+    /// moment, stiffness and per-wire stick/slip table (SPEC 6).
+    Section {
+        /// Scene file (only its `strand` and `law` are used).
+        scene: PathBuf,
+        /// Axial strain eps (-).
+        #[arg(long, allow_negative_numbers = true)]
+        strain: Option<f64>,
+        /// Curvature magnitude (1/m), convex side toward +y (the paper's hanging cantilever);
+        /// negative bends the other way.
+        #[arg(long, allow_negative_numbers = true)]
+        curvature: Option<f64>,
+        /// Material coordinate x along the strand (m).
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+        at: f64,
+        /// Section law (default: the scene's).
+        #[arg(long, value_enum)]
+        law: Option<LawArg>,
+        /// Print one JSON object instead of tables.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        Command::Section {
+            scene,
+            strain,
+            curvature,
+            at,
+            law,
+            json,
+        } => section(&scene, strain, curvature, at, law.map(Into::into), json),
+    }
+}
+
+fn section(
+    path: &std::path::Path,
+    strain: Option<f64>,
+    curvature: Option<f64>,
+    at: f64,
+    law: Option<LawKind>,
+    json: bool,
+) -> anyhow::Result<()> {
+    let scene = Scene::load(path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let strand = &scene.strand;
+    let law = law.unwrap_or(scene.law);
+    for (name, v) in [("--strain", strain), ("--curvature", curvature)] {
+        if let Some(v) = v {
+            anyhow::ensure!(v.is_finite(), "{name} must be a finite number, got {v}");
+        }
+    }
+    anyhow::ensure!(
+        at.is_finite() && (0.0..=strand.length()).contains(&at),
+        "--at must lie on the strand, in [0, {}] m, got {at}",
+        strand.length()
+    );
+    let summary = StrandSummary::new(strand);
+    let point = match (strain, curvature) {
+        (Some(e), Some(k)) => Some(SectionPoint::new(strand, law, e, k, at)),
+        (None, None) => None,
+        _ => anyhow::bail!("give both --strain and --curvature, or neither"),
+    };
+    if json {
+        let mut v = serde_json::to_value(&summary)?;
+        if let Some(p) = &point {
+            let obj = v.as_object_mut().expect("summary is an object");
+            for (k, x) in serde_json::to_value(p)?.as_object().expect("object") {
+                obj.insert(k.clone(), x.clone());
+            }
+        }
+        println!("{}", serde_json::to_string_pretty(&v)?);
+        return Ok(());
+    }
+    print_summary(&scene, &summary);
+    if let Some(p) = &point {
+        print_point(p);
+    }
+    Ok(())
+}
+
+fn opt(v: Option<f64>, unit: &str) -> String {
+    v.map_or("-".to_string(), |v| format!("{v:.6e} {unit}"))
+}
+
+fn print_summary(scene: &Scene, s: &StrandSummary) {
+    let strand = &scene.strand;
+    let m = strand.layer().map_or(0, |l| l.wires());
+    println!(
+        "strand `{}`: 1+{m}, L = {} m, friction {}",
+        scene.name,
+        strand.length(),
+        strand.friction()
+    );
+    let rows: [(&str, String); 11] = [
+        ("helix radius R_w", opt(s.r_w, "m")),
+        ("pitch P", opt(s.pitch, "m")),
+        ("lay angle", opt(s.lay_angle_deg, "deg")),
+        ("loss factor eta = cos^3(alpha)", opt(s.eta, "")),
+        ("gap between layer wires", opt(s.wire_gap, "m")),
+        ("mass per length", format!("{:.6e} kg/m", s.mass_per_length)),
+        ("axial stiffness EA_eq", format!("{:.6e} N", s.ea)),
+        (
+            "bending stiffness K_min (all slip)",
+            format!("{:.6e} N m^2", s.k_min),
+        ),
+        (
+            "bending stiffness K_max (all stick)",
+            format!("{:.6e} N m^2", s.k_max),
+        ),
+        ("traditional EI", format!("{:.6e} N m^2", s.ei_traditional)),
+        ("traditional EA", format!("{:.6e} N", s.ea_traditional)),
+    ];
+    for (k, v) in rows {
+        println!("  {k:<36} {v}");
+    }
+}
+
+fn print_point(p: &SectionPoint) {
+    println!(
+        "\n{} law at x = {} m, strain {:e}, curvature {:e} 1/m{}",
+        p.law,
+        p.at,
+        p.strain,
+        p.curvature,
+        if p.curvature >= 0.0 {
+            " (convex side +y)"
+        } else {
+            " (convex side -y)"
+        }
+    );
+    let rows: [(&str, String); 6] = [
+        ("axial force", format!("{:.6e} N", p.axial_force)),
+        ("bending moment", format!("{:.6e} N m", p.moment)),
+        (
+            "secant stiffness M/kappa",
+            format!("{:.6e} N m^2", p.secant_stiffness),
+        ),
+        (
+            "tangent stiffness dM/dkappa",
+            format!("{:.6e} N m^2", p.tangent_stiffness),
+        ),
+        (
+            "first slip at curvature",
+            opt(p.first_slip_curvature, "1/m"),
+        ),
+        ("full slip at curvature", opt(p.full_slip_curvature, "1/m")),
+    ];
+    for (k, v) in rows {
+        println!("  {k:<36} {v}");
+    }
+    if p.wires.is_empty() {
+        return;
+    }
+    println!(
+        "\n  {:>4} {:>10} {:>14} {:>14} {:>14} {:>6}",
+        "wire", "phase/deg", "K_stick/N m^2", "M_slip/N m", "kappa_c/(1/m)", "state"
+    );
+    for w in &p.wires {
+        let kc = w
+            .critical_curvature
+            .map_or("never".to_string(), |c| format!("{c:.6e}"));
+        let state = match w.state {
+            strand_core::WireState::Stick => "stick",
+            strand_core::WireState::Slip => "slip",
+        };
+        println!(
+            "  {:>4} {:>10.3} {:>14.6e} {:>14.6e} {:>14} {:>6}",
+            w.wire,
+            w.phase.to_degrees(),
+            w.k_stick,
+            w.m_slip,
+            kc,
+            state
+        );
+    }
+}

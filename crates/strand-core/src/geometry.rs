@@ -327,7 +327,10 @@ fn finite(field: &str, v: f64) -> Result<(), InputError> {
     if v.is_finite() {
         Ok(())
     } else {
-        Err(InputError::new(field, format!("must be a finite number, got {v}")))
+        Err(InputError::new(
+            field,
+            format!("must be a finite number, got {v}"),
+        ))
     }
 }
 

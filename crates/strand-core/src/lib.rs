@@ -1,5 +1,6 @@
 //! Constitutive core of `strand`: strand geometry and materials ([`geometry`], SPEC 1) and the
-//! stick/slip section laws of the equivalent beam ([`section`], SPEC 2).
+//! stick/slip section laws of the equivalent beam ([`section`], SPEC 2), and the strand
+//! calculator's summary ([`summary`]).
 //!
 //! Equation numbers "(n)" in the documentation are those of Guo, Wei, Tan, Zhao (2018),
 //! "Analysis of the cored stranded wire rope on the nonlinear bending dynamic
@@ -8,6 +9,7 @@
 pub mod error;
 pub mod geometry;
 pub mod section;
+pub mod summary;
 
 pub use error::InputError;
 pub use geometry::{
@@ -17,3 +19,4 @@ pub use geometry::{
 pub use section::{
     LawKind, PlanarResponse, SectionLaw, SectionResponse, Station, WireReport, WireState,
 };
+pub use summary::{SectionPoint, StrandSummary};

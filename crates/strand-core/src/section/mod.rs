@@ -3,7 +3,7 @@
 //! A [`SectionLaw`] maps the axial strain `eps`, the bending curvature and the material
 //! coordinate `x` to the axial force, the bending moment, their tangents and the stored energy
 //! density. Four laws share one implementation ([`LawKind`]): the helical wires are friction
-//! sliders ([`slider`]) whose force laws differ; `constant` has no sliders.
+//! sliders (module `slider`) whose force laws differ; `constant` has no sliders.
 //!
 //! # Section frame, curvature vector and wire phases
 //!
@@ -11,8 +11,10 @@
 //! `i` sits at `(y, z) = R_w (sin phi_i, cos phi_i)` (eq. (1)), with `phi_i(x)` from eqs. (36),
 //! (37). The curvature vector `kappa = (kappa_y, kappa_z)` holds the bending curvatures about
 //! y and z, so the bending strain of a fibre at (y, z) is `z kappa_y - y kappa_z`, and wire `i`
-//! has the lever `l_i = R_w (cos phi_i, -sin phi_i)`: its bending strain is `e_i = l_i . kappa`
-//! and its force `F_i` adds `F_i l_i` to the moment vector.
+//! has the lever `l_i = R_w (cos phi_i, -sin phi_i)`: its bending strain is `e_i = l_i . kappa`.
+//! Lever arms are measured against the bending direction: the wire's force `F_i` adds
+//! `F_i (l_i . kappa_hat)` to the moment along `kappa_hat = kappa/|kappa|`, so the moment is
+//! parallel to the curvature (the planar law applied in the plane of bending).
 //!
 //! A planar scene moves in the global XY plane with z = global Z; the signed planar curvature
 //! `kappa = (r' x r'')_Z / |r'|^3` is `kappa_z`. Bending with the convex side toward +y
@@ -26,8 +28,7 @@
 //! one with a non-negative z component (the +y half when `kappa_z = 0`). For planar bending
 //! this is the +z axis in both senses, which is exactly the SPEC 2 mirror convention; for
 //! general 3D bending it changes sides when `kappa_z` changes sign, so the limits of the
-//! (already asymmetric) paper law jump there. Only the lever and the side of the wire enter the
-//! `continuous`, `paper` and `hysteretic` laws; K_min and the axial stiffness are isotropic.
+//! (already asymmetric) paper law jump there. K_min and the axial stiffness are isotropic.
 
 mod slider;
 
@@ -308,7 +309,8 @@ impl SectionLaw {
             moment: self.base_bending * kappa,
             moment_curvature: self.base_bending,
             moment_strain: 0.0,
-            energy: 0.5 * self.axial_stiffness * eps * eps + 0.5 * self.base_bending * kappa * kappa,
+            energy: 0.5 * self.axial_stiffness * eps * eps
+                + 0.5 * self.base_bending * kappa * kappa,
             slip_work: 0.0,
             slipping: 0,
         };
@@ -329,8 +331,13 @@ impl SectionLaw {
     }
 
     /// Evaluates the law for a curvature vector `kappa = (kappa_y, kappa_z)` (1/m) in the
-    /// section frame at strain `eps`; `slip` and `trial` as for [`Self::planar`]. With
-    /// `kappa_y = 0` it agrees with [`Self::planar`].
+    /// section frame at strain `eps`; `slip` and `trial` as for [`Self::planar`].
+    ///
+    /// The moment is parallel to the curvature: each wire's force acts through its lever
+    /// measured against the bending direction, `lambda_i = l_i . kappa/|kappa|`, so
+    /// `M = K_min kappa + (sum_i F_i lambda_i) kappa/|kappa|`, the planar law applied in the
+    /// plane of bending. With `kappa_y = 0` it agrees with [`Self::planar`]; at zero curvature
+    /// the tangent is the planar one, applied isotropically.
     pub fn vector(
         &self,
         st: &Station,
@@ -340,69 +347,78 @@ impl SectionLaw {
         trial: &mut [f64],
     ) -> SectionResponse {
         let kb = self.base_bending;
-        let kk = kappa[0] * kappa[0] + kappa[1] * kappa[1];
+        let knorm = kappa[0].hypot(kappa[1]);
         let mut r = SectionResponse {
             axial_force: self.axial_stiffness * eps,
             axial_stiffness: self.axial_stiffness,
             moment: [kb * kappa[0], kb * kappa[1]],
             moment_curvature: [[kb, 0.0], [0.0, kb]],
             moment_strain: [0.0; 2],
-            energy: 0.5 * self.axial_stiffness * eps * eps + 0.5 * kb * kk,
+            energy: 0.5 * self.axial_stiffness * eps * eps + 0.5 * kb * knorm * knorm,
             slip_work: 0.0,
             slipping: 0,
         };
         let Some(law) = self.layer else { return r };
+        if knorm == 0.0 {
+            let p = self.planar(st, eps, 0.0, slip, trial);
+            r.moment_curvature = [[p.moment_curvature, 0.0], [0.0, p.moment_curvature]];
+            r.energy = p.energy;
+            return r;
+        }
         let (scale, dscale) = self.cap_scale(eps);
-        let knorm = kk.sqrt();
+        let kh = [kappa[0] / knorm, kappa[1] / knorm];
         let b = neutral_axis(kappa);
+        // Sign relating the neutral-axis reference b to the bending direction kh.
+        let s = if b[0] * kh[0] + b[1] * kh[1] >= 0.0 {
+            1.0
+        } else {
+            -1.0
+        };
+        let (mut m, mut dm, mut dm_deps) = (0.0, [0.0; 2], 0.0);
         for (i, w) in st.wires.iter().enumerate() {
             let l = w.lever;
-            let e = l[0] * kappa[0] + l[1] * kappa[1];
-            // Angle from the reference half of the neutral axis and its gradient in kappa.
-            let (gains, dtheta) = if knorm > 0.0 {
-                let p = w.position;
-                let c = (p[0] * b[0] + p[1] * b[1]).clamp(-1.0, 1.0);
-                let sin_t = (p[0] * b[1] - p[1] * b[0]).abs();
-                let theta = c.acos();
-                let g = [
-                    (law.capstan * theta).exp_m1(),
-                    -(-law.capstan * theta).exp_m1(),
-                ];
-                // d cos(theta)/d kappa = (p - (p.b) b) / |kappa| * sign, b = sign kappa/|kappa|.
-                let dt = if sin_t > 1e-12 {
-                    let s = if b[0] * kappa[0] + b[1] * kappa[1] >= 0.0 { 1.0 } else { -1.0 };
-                    let f = -s / (knorm * sin_t);
-                    [f * (p[0] - c * b[0]), f * (p[1] - c * b[1])]
-                } else {
-                    [0.0; 2]
-                };
-                (g, dt)
-            } else {
-                (w.gains, [0.0; 2])
-            };
-            let f = self.slide(law, i, e, scale, gains, slip, trial);
-            // d cap / d theta for the active side.
-            let theta_gain = if law.capstan > 0.0 {
-                let a = law.capstan;
-                f.d_cap_pos * a * (gains[0] + 1.0) + f.d_cap_neg * a * (1.0 - gains[1])
-            } else {
-                0.0
-            };
-            let df = [
-                f.d_strain * l[0] + scale * theta_gain * dtheta[0],
-                f.d_strain * l[1] + scale * theta_gain * dtheta[1],
+            let lambda = l[0] * kh[0] + l[1] * kh[1];
+            // Angle theta from the reference half of the neutral axis, and d theta/d kappa.
+            let p = w.position;
+            let c = (p[0] * b[0] + p[1] * b[1]).clamp(-1.0, 1.0);
+            let sin_t = (p[0] * b[1] - p[1] * b[0]).abs();
+            let theta = c.acos();
+            let gains = [
+                (law.capstan * theta).exp_m1(),
+                -(-law.capstan * theta).exp_m1(),
             ];
-            let dfe = (f.d_cap_pos * gains[0] + f.d_cap_neg * gains[1]) * dscale;
-            for a in 0..2 {
-                r.moment[a] += f.force * l[a];
-                r.moment_strain[a] += dfe * l[a];
-                for c in 0..2 {
-                    r.moment_curvature[a][c] += l[a] * df[c];
-                }
+            let f = self.slide(law, i, lambda * knorm, scale, gains, slip, trial);
+            // d cap/d theta of the active side (non-zero only while slipping) ...
+            let a = law.capstan;
+            let cap_theta =
+                scale * a * (f.d_cap_pos * (gains[0] + 1.0) + f.d_cap_neg * (1.0 - gains[1]));
+            // ... times d theta/d kappa, from cos(theta) = s p.kappa/|kappa|:
+            // d theta/d kappa = -s (p - c b) / (|kappa| sin(theta)), where (p - c b)/sin(theta)
+            // is a unit vector; it enters the moment times the lever lambda.
+            let turn = if cap_theta != 0.0 && sin_t > 0.0 {
+                // |lambda| = R_w sin(theta): take the bounded ratio first.
+                let f = -s * cap_theta * (lambda / sin_t) / knorm;
+                [f * (p[0] - c * b[0]), f * (p[1] - c * b[1])]
+            } else {
+                [0.0; 2]
+            };
+            for j in 0..2 {
+                let dlambda = (l[j] - lambda * kh[j]) / knorm;
+                dm[j] += f.d_strain * l[j] * lambda + turn[j] + f.force * dlambda;
             }
+            m += f.force * lambda;
+            dm_deps += (f.d_cap_pos * gains[0] + f.d_cap_neg * gains[1]) * dscale * lambda;
             r.energy += f.energy;
             r.slip_work += f.slip_work;
             r.slipping += usize::from(f.state == WireState::Slip);
+        }
+        for a in 0..2 {
+            r.moment[a] += m * kh[a];
+            r.moment_strain[a] = dm_deps * kh[a];
+            for j in 0..2 {
+                let proj = if a == j { 1.0 } else { 0.0 } - kh[a] * kh[j];
+                r.moment_curvature[a][j] += kh[a] * dm[j] + m * proj / knorm;
+            }
         }
         r
     }
@@ -454,8 +470,6 @@ impl SectionLaw {
             .map(|(i, w)| {
                 let lever = w.lever[1] * dir; // strain per unit |kappa|
                 let arm = lever.abs();
-                let side = if lever >= 0.0 { 0 } else { 1 };
-                let cap = scale * w.gains[side];
                 let f = slider(
                     self.kind,
                     law.k,
@@ -465,15 +479,39 @@ impl SectionLaw {
                     law.paper_factor,
                     slip.get(i).copied().unwrap_or(0.0),
                 );
+                // The side of the slider the force loads (the strain's side when it is zero).
+                let stretched = if f.force != 0.0 {
+                    f.force > 0.0
+                } else {
+                    lever >= 0.0
+                };
+                let cap = scale * w.gains[if stretched { 0 } else { 1 }];
                 let factor = if self.kind == LawKind::Paper {
                     law.paper_factor
                 } else {
                     1.0
                 };
-                let critical = if arm <= 1e-14 * law.radius {
-                    None
+                // kappa_c = cap / (k_factor arm), arm = R_w sin(theta), theta = |phi|; the
+                // ratio gain/sin(theta) has the limit mu sin(alpha) on the neutral axis
+                // (theta -> 0) and grows without bound as theta -> pi.
+                let theta = w.phase.abs();
+                let sin_t = theta.sin();
+                let gain = w.gains[if stretched { 0 } else { 1 }];
+                let ratio = if sin_t > 1e-12 {
+                    Some(gain / sin_t)
+                } else if theta < 0.5 * std::f64::consts::PI {
+                    Some(law.capstan)
                 } else {
-                    Some(cap / (law.k * factor * arm))
+                    None
+                };
+                let critical = ratio.map(|r| scale * r / (law.k * factor * law.radius));
+                // A wire without lever carries no force; its state follows kappa_c.
+                let state = if arm > 1e-12 * law.radius {
+                    f.state
+                } else if critical.is_some_and(|c| kappa.abs() > c) {
+                    WireState::Slip
+                } else {
+                    WireState::Stick
                 };
                 WireReport {
                     wire: i + 1,
@@ -481,7 +519,7 @@ impl SectionLaw {
                     k_stick: law.k * arm * arm,
                     m_slip: cap * arm,
                     critical_curvature: critical,
-                    state: f.state,
+                    state,
                 }
             })
             .collect()
@@ -507,7 +545,7 @@ impl SectionLaw {
 /// Reference half of the neutral axis for a curvature vector: the unit vector along `kappa`
 /// with a non-negative z component (+y when `kappa_z = 0`); +z for zero curvature.
 fn neutral_axis(kappa: [f64; 2]) -> [f64; 2] {
-    let n = (kappa[0] * kappa[0] + kappa[1] * kappa[1]).sqrt();
+    let n = kappa[0].hypot(kappa[1]);
     if n == 0.0 {
         return [0.0, 1.0];
     }

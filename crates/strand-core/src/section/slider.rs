@@ -94,7 +94,12 @@ pub(crate) fn slider(
             if e.abs() <= ec {
                 stick(k * e, slip)
             } else {
-                sliding(e >= 0.0, 0.5 * k * ec * ec + cap * (e.abs() - ec), slip, 0.0)
+                sliding(
+                    e >= 0.0,
+                    0.5 * k * ec * ec + cap * (e.abs() - ec),
+                    slip,
+                    0.0,
+                )
             }
         }
         LawKind::Hysteretic => {

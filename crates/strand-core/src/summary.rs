@@ -1,0 +1,118 @@
+//! What a strand calculator prints: the derived quantities of SPEC 1 and 2 and, for a given
+//! strain and curvature, the section's response with a table per wire (`strand section`).
+
+use serde::Serialize;
+
+use crate::geometry::Strand;
+use crate::section::{LawKind, SectionLaw, WireReport};
+
+/// Derived quantities of a strand (keys as in SPEC 6 `strand section --json`). Layer
+/// quantities are `None` for a plain wire.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct StrandSummary {
+    /// Helix radius R_w (m).
+    #[serde(rename = "R_w")]
+    pub r_w: Option<f64>,
+    /// Pitch P (m).
+    pub pitch: Option<f64>,
+    /// Lay angle alpha (deg).
+    pub lay_angle_deg: Option<f64>,
+    /// Stiffness loss factor eta = cos^3(alpha).
+    pub eta: Option<f64>,
+    /// Gap between neighbouring helical wires (m).
+    pub wire_gap: Option<f64>,
+    /// Mass per length (kg/m), eq. (44).
+    pub mass_per_length: f64,
+    /// Equivalent axial stiffness EA_eq (N), eq. (32).
+    #[serde(rename = "EA")]
+    pub ea: f64,
+    /// All-slip bending stiffness K_min (N m^2), eq. (11).
+    #[serde(rename = "K_min")]
+    pub k_min: f64,
+    /// All-stick bending stiffness K_max (N m^2), eq. (22a) summed.
+    #[serde(rename = "K_max")]
+    pub k_max: f64,
+    /// Traditional beam bending stiffness EI (N m^2).
+    #[serde(rename = "EI_traditional")]
+    pub ei_traditional: f64,
+    /// Traditional beam axial stiffness EA (N).
+    #[serde(rename = "EA_traditional")]
+    pub ea_traditional: f64,
+}
+
+/// Response of a section to a given strain and curvature.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct SectionPoint {
+    /// Section law.
+    pub law: LawKind,
+    /// Axial strain eps (-).
+    pub strain: f64,
+    /// Curvature magnitude with the convex side toward +y (negative: the other way) (1/m).
+    pub curvature: f64,
+    /// Material coordinate x (m).
+    pub at: f64,
+    /// Axial force (N).
+    pub axial_force: f64,
+    /// Bending moment magnitude, signed like `curvature` (N m).
+    pub moment: f64,
+    /// Secant bending stiffness M / kappa (N m^2).
+    pub secant_stiffness: f64,
+    /// Tangent bending stiffness dM/dkappa (N m^2).
+    pub tangent_stiffness: f64,
+    /// Smallest critical curvature of the wires: where slip starts (1/m).
+    pub first_slip_curvature: Option<f64>,
+    /// Largest finite critical curvature: beyond it every wire with a lever slips (1/m).
+    pub full_slip_curvature: Option<f64>,
+    /// Per-wire table.
+    pub wires: Vec<WireReport>,
+}
+
+impl StrandSummary {
+    /// Summarises `strand`.
+    pub fn new(strand: &Strand) -> Self {
+        let l = strand.layer();
+        let t = strand.traditional();
+        StrandSummary {
+            r_w: l.map(|l| l.radius),
+            pitch: l.map(|l| l.pitch),
+            lay_angle_deg: l.map(|l| l.lay_angle().to_degrees()),
+            eta: l.map(|l| l.eta),
+            wire_gap: l.map(|l| l.wire_gap()).filter(|g| g.is_finite()),
+            mass_per_length: strand.mass_per_length(),
+            ea: strand.axial_stiffness(),
+            k_min: strand.min_bending_stiffness(),
+            k_max: strand.max_bending_stiffness(),
+            ei_traditional: t.bending_stiffness,
+            ea_traditional: t.axial_stiffness,
+        }
+    }
+}
+
+impl SectionPoint {
+    /// Evaluates `law` of `strand` at strain `eps`, curvature magnitude `curvature` (positive:
+    /// convex side toward +y, the paper's orientation; negative: the other way) and material
+    /// coordinate `at`, from a state without slip.
+    pub fn new(strand: &Strand, law: LawKind, eps: f64, curvature: f64, at: f64) -> Self {
+        let law_ = SectionLaw::new(strand, law);
+        let st = law_.station(at);
+        let kappa = -curvature; // signed planar curvature kappa_z
+        let slip = vec![0.0; law_.state_len()];
+        let mut trial = slip.clone();
+        let r = law_.planar(&st, eps, kappa, &slip, &mut trial);
+        let wires = law_.planar_wires(&st, eps, kappa, &slip);
+        let crit = wires.iter().filter_map(|w| w.critical_curvature);
+        SectionPoint {
+            law,
+            strain: eps,
+            curvature,
+            at,
+            axial_force: r.axial_force,
+            moment: -r.moment,
+            secant_stiffness: law_.planar_secant(&st, eps, kappa, &slip),
+            tangent_stiffness: r.moment_curvature,
+            first_slip_curvature: crit.clone().reduce(f64::min),
+            full_slip_curvature: crit.reduce(f64::max),
+            wires,
+        }
+    }
+}

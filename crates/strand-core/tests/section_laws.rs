@@ -1,0 +1,520 @@
+//! Property tests of the section laws (SPEC 2): continuity, monotonicity, the stick/slip
+//! switch at the critical curvature, limits, symmetry, finite edge cases, analytic
+//! derivatives against finite differences, and the hysteretic law's energy bounds.
+
+mod common;
+
+use proptest::prelude::*;
+use std::f64::consts::PI;
+use strand_core::{
+    LawKind, LayDirection, LayerSpec, Material, SectionLaw, Station, Strand, StrandSpec, WireSpec,
+    WireState,
+};
+
+/// A random valid 1+m strand: sizes, moduli, lay angle, phase, lay direction, friction.
+fn strand() -> impl Strategy<Value = Strand> {
+    (
+        (0.5e-3..5e-3f64, 0.2..1.5f64, 1usize..=9, 5.0..40.0f64),
+        (
+            8.0..11.5f64,
+            0.5..2.0f64,
+            -PI..PI,
+            any::<bool>(),
+            0.0..1.0f64,
+        ),
+    )
+        .prop_filter_map(
+            "overlapping layer",
+            |((dc, ratio, m, alpha), (loge, eratio, phase, left, mu))| {
+                let e = 10f64.powf(loge);
+                let mat = |e: f64| Material {
+                    youngs_modulus: e,
+                    poisson_ratio: 0.3,
+                    density: 7800.0,
+                };
+                Strand::new(StrandSpec {
+                    length: 1.0,
+                    core: WireSpec {
+                        diameter: dc,
+                        material: mat(e),
+                    },
+                    layers: vec![LayerSpec {
+                        wires: m,
+                        wire: WireSpec {
+                            diameter: dc * ratio,
+                            material: mat(e * eratio),
+                        },
+                        lay_angle: alpha.to_radians(),
+                        phase,
+                        direction: if left {
+                            LayDirection::Left
+                        } else {
+                            LayDirection::Right
+                        },
+                    }],
+                    friction: mu,
+                })
+                .ok()
+            },
+        )
+}
+
+/// Typical first-slip curvature scale eps mu sin(alpha) / R_w of a strand (1/m).
+fn curvature_scale(s: &Strand, eps: f64) -> f64 {
+    let l = s.layer().unwrap();
+    (eps.abs().max(1e-6) * s.friction().max(0.05) * l.lay_angle().sin() / l.radius).max(1e-6)
+}
+
+fn planar(law: &SectionLaw, st: &Station, eps: f64, kappa: f64) -> strand_core::PlanarResponse {
+    let mut trial = vec![0.0; law.state_len()];
+    let slip = vec![0.0; law.state_len()];
+    law.planar(st, eps, kappa, &slip, &mut trial)
+}
+
+/// Distance (relative) of `kappa` from the nearest switch of any wire.
+fn switch_distance(law: &SectionLaw, st: &Station, eps: f64, kappa: f64) -> f64 {
+    law.planar_wires(st, eps, kappa, &[])
+        .iter()
+        .filter_map(|w| w.critical_curvature)
+        .map(|c| (kappa.abs() - c).abs() / c.max(1e-300))
+        .fold(f64::INFINITY, f64::min)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// `continuous`: M(k) is continuous and non-decreasing in the curvature magnitude, for
+    /// bending in either sense.
+    #[test]
+    fn continuous_moment_is_monotone_and_continuous(
+        s in strand(), eps in 1e-5..1e-2f64, x in 0.0..1.0f64,
+        u in 0.0..20.0f64, du in 1e-9..1e-3f64, sense in prop::sample::select(vec![-1.0, 1.0]),
+    ) {
+        let law = SectionLaw::new(&s, LawKind::Continuous);
+        let st = law.station(x);
+        let k1 = u * curvature_scale(&s, eps);
+        let k2 = k1 * (1.0 + du) + du * curvature_scale(&s, eps);
+        let m1 = sense * planar(&law, &st, eps, sense * k1).moment;
+        let m2 = sense * planar(&law, &st, eps, sense * k2).moment;
+        prop_assert!(m2 >= m1 * (1.0 - 1e-14), "M decreased: {m1} -> {m2}");
+        // Lipschitz with the all-stick tangent: no jump anywhere.
+        let kstick: f64 = law.planar_wires(&st, eps, sense * k1, &[]).iter().map(|w| w.k_stick).sum();
+        let lip = (s.min_bending_stiffness() + kstick) * (k2 - k1);
+        prop_assert!(m2 - m1 <= lip * (1.0 + 1e-9) + 1e-300, "jump {} > {}", m2 - m1, lip);
+    }
+
+    /// A wire sticks exactly when its curvature is below its critical curvature.
+    #[test]
+    fn stick_exactly_below_critical_curvature(
+        s in strand(), eps in -1e-3..1e-2f64, x in 0.0..1.0f64, u in 0.0..20.0f64,
+        kind in prop::sample::select(vec![LawKind::Continuous, LawKind::Paper, LawKind::Hysteretic]),
+        sense in prop::sample::select(vec![-1.0, 1.0]),
+    ) {
+        let law = SectionLaw::new(&s, kind);
+        let st = law.station(x);
+        let k = u * curvature_scale(&s, eps);
+        let slip = vec![0.0; law.state_len()];
+        for w in law.planar_wires(&st, eps, sense * k, &slip) {
+            match w.critical_curvature {
+                None => prop_assert_eq!(w.state, WireState::Stick),
+                Some(c) => {
+                    if (k - c).abs() > 1e-9 * c.max(1e-12) {
+                        let expect = if k < c { WireState::Stick } else { WireState::Slip };
+                        prop_assert_eq!(w.state, expect, "k {} kappa_c {}", k, c);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Zero or negative strain presses no wire on the core: M = K_min kappa.
+    #[test]
+    fn no_tension_gives_k_min(
+        s in strand(), eps in -1e-2..=0.0f64, x in 0.0..1.0f64, k in -10.0..10.0f64,
+        kind in prop::sample::select(vec![LawKind::Continuous, LawKind::Paper, LawKind::Hysteretic]),
+    ) {
+        let law = SectionLaw::new(&s, kind);
+        let st = law.station(x);
+        let r = planar(&law, &st, eps, k);
+        let expect = s.min_bending_stiffness() * k;
+        prop_assert!((r.moment - expect).abs() <= 1e-12 * expect.abs().max(1e-300));
+    }
+
+    /// Small curvature under high tension: every wire sticks and the secant stiffness is
+    /// K_min + sum K_stick_i, which is the all-stick K_max for m >= 3.
+    #[test]
+    fn small_curvature_high_tension_gives_all_stick(
+        s in strand(), x in 0.0..1.0f64, sense in prop::sample::select(vec![-1.0, 1.0]),
+    ) {
+        let law = SectionLaw::new(&s, LawKind::Continuous);
+        let st = law.station(x);
+        let eps = 1e-2;
+        let k = 1e-9 * curvature_scale(&s, eps);
+        let secant = planar(&law, &st, eps, sense * k).moment / (sense * k);
+        let sum: f64 = law.planar_wires(&st, eps, sense * k, &[]).iter().map(|w| w.k_stick).sum();
+        // Wires within 1e-7 rad of the neutral axis have (almost) no friction limit.
+        let near_axis = st.wires.iter().any(|w| w.phase.abs() < 1e-6 || (PI - w.phase.abs()) < 1e-6);
+        if !near_axis {
+            let want = s.min_bending_stiffness() + sum;
+            prop_assert!((secant - want).abs() <= 1e-9 * want);
+            if s.layer().unwrap().wires() >= 3 {
+                prop_assert!((secant - s.max_bending_stiffness()).abs() <= 1e-9 * want);
+            }
+        }
+    }
+
+    /// `paper`: at a wire's switch its moment drops by exactly cos^2(alpha).
+    #[test]
+    fn paper_law_drops_by_cos2_alpha(
+        s in strand(), eps in 1e-5..1e-2f64, x in 0.0..1.0f64,
+        sense in prop::sample::select(vec![-1.0, 1.0]),
+    ) {
+        let law = SectionLaw::new(&s, LawKind::Paper);
+        let st = law.station(x);
+        let c2 = s.layer().unwrap().lay_angle().cos().powi(2);
+        for w in law.planar_wires(&st, eps, sense, &[]) {
+            if let Some(kc) = w.critical_curvature
+                && w.k_stick * kc > 0.0
+            {
+                    // Stick moment at the switch K_stick kappa_c; slip moment M_slip.
+                    let ratio = w.m_slip / (w.k_stick * kc);
+                    prop_assert!((ratio - c2).abs() <= 1e-12, "ratio {ratio} vs {c2}");
+                    // The total moment shows the same drop across the switch.
+                    let d = 1e-9 * kc;
+                    let below = sense * planar(&law, &st, eps, sense * (kc - d)).moment;
+                    let above = sense * planar(&law, &st, eps, sense * (kc + d)).moment;
+                    let others = (s.min_bending_stiffness() + s.max_bending_stiffness()) * 4.0 * d;
+                    let drop = w.k_stick * kc * (1.0 - c2);
+                    prop_assert!(((below - above) - drop).abs() <= others + 1e-9 * drop,
+                        "drop {} vs {}", below - above, drop);
+            }
+        }
+    }
+
+    /// Mirror symmetry: mirroring the wire phases (phase -> -phase, lay reversed) mirrors the
+    /// law: M(-kappa; -phi) = -M(kappa; phi).
+    #[test]
+    fn mirrored_strand_mirrors_the_moment(
+        s in strand(), eps in -1e-3..1e-2f64, x in 0.0..1.0f64, u in 0.0..20.0f64,
+        kind in prop::sample::select(vec![LawKind::Continuous, LawKind::Paper, LawKind::Hysteretic]),
+    ) {
+        let mut spec = s.spec().clone();
+        let l = &mut spec.layers[0];
+        l.phase = -l.phase;
+        l.direction = match l.direction { LayDirection::Right => LayDirection::Left, LayDirection::Left => LayDirection::Right };
+        let mirrored = Strand::new(spec).unwrap();
+        let (a, b) = (SectionLaw::new(&s, kind), SectionLaw::new(&mirrored, kind));
+        let (sa, sb) = (a.station(x), b.station(x));
+        let k = u * curvature_scale(&s, eps);
+        let (ra, rb) = (planar(&a, &sa, eps, k), planar(&b, &sb, eps, -k));
+        prop_assert!((ra.moment + rb.moment).abs() <= 1e-12 * ra.moment.abs().max(1e-300));
+        prop_assert!((ra.energy - rb.energy).abs() <= 1e-12 * ra.energy.abs().max(1e-300));
+    }
+
+    /// Analytic tangents dM/dkappa and dM/deps agree with central differences away from
+    /// switch points, planar and vector forms.
+    #[test]
+    fn tangents_match_finite_differences(
+        s in strand(), eps in 1e-4..1e-2f64, x in 0.0..1.0f64, u in 0.01..20.0f64,
+        dir in 0.0..(2.0 * PI),
+        kind in prop::sample::select(vec![LawKind::Continuous, LawKind::Paper, LawKind::Hysteretic, LawKind::Constant]),
+    ) {
+        let law = SectionLaw::new(&s, kind);
+        let st = law.station(x);
+        let k = u * curvature_scale(&s, eps);
+        prop_assume!(switch_distance(&law, &st, eps, k) > 1e-3);
+        let mut trial = vec![0.0; law.state_len()];
+        let slip = vec![0.0; law.state_len()];
+        let r = law.planar(&st, eps, -k, &slip, &mut trial);
+        let hk = 1e-6 * k;
+        let fd_k = (law.planar(&st, eps, -k + hk, &slip, &mut trial).moment
+            - law.planar(&st, eps, -k - hk, &slip, &mut trial).moment) / (2.0 * hk);
+        let scale = s.max_bending_stiffness() * 2.0;
+        prop_assert!((fd_k - r.moment_curvature).abs() <= 1e-6 * scale, "dM/dk {} fd {}", r.moment_curvature, fd_k);
+        let he = 1e-6 * eps;
+        let fd_e = (law.planar(&st, eps + he, -k, &slip, &mut trial).moment
+            - law.planar(&st, eps - he, -k, &slip, &mut trial).moment) / (2.0 * he);
+        prop_assert!((fd_e - r.moment_strain).abs() <= 1e-6 * (r.moment.abs() / eps + 1e-300),
+            "dM/deps {} fd {}", r.moment_strain, fd_e);
+
+        // Vector form along a general direction, away from kappa_z = 0 where the neutral
+        // axis reference changes side.
+        let kv = [k * dir.cos(), k * dir.sin()];
+        prop_assume!(dir.sin().abs() > 1e-2);
+        let v = law.vector(&st, eps, kv, &slip, &mut trial);
+        for c in 0..2 {
+            let mut kp = kv;
+            let mut km = kv;
+            kp[c] += hk;
+            km[c] -= hk;
+            let mp = law.vector(&st, eps, kp, &slip, &mut trial).moment;
+            let mm = law.vector(&st, eps, km, &slip, &mut trial).moment;
+            // Skip if the finite difference straddles a switch.
+            let sp = law.vector(&st, eps, kp, &slip, &mut trial).slipping;
+            let sm = law.vector(&st, eps, km, &slip, &mut trial).slipping;
+            prop_assume!(sp == v.slipping && sm == v.slipping);
+            for a in 0..2 {
+                let fd = (mp[a] - mm[a]) / (2.0 * hk);
+                prop_assert!((fd - v.moment_curvature[a][c]).abs() <= 1e-5 * scale,
+                    "dM{a}/dk{c} {} fd {}", v.moment_curvature[a][c], fd);
+            }
+        }
+        let mp = law.vector(&st, eps + he, kv, &slip, &mut trial).moment;
+        let mm = law.vector(&st, eps - he, kv, &slip, &mut trial).moment;
+        for a in 0..2 {
+            let fd = (mp[a] - mm[a]) / (2.0 * he);
+            prop_assert!((fd - v.moment_strain[a]).abs() <= 1e-6 * (k * scale / eps),
+                "dM{a}/deps {} fd {}", v.moment_strain[a], fd);
+        }
+    }
+
+    /// The vector form with kappa_y = 0 is the planar form.
+    #[test]
+    fn vector_form_reduces_to_planar(
+        s in strand(), eps in -1e-3..1e-2f64, x in 0.0..1.0f64, k in -20.0..20.0f64,
+        kind in prop::sample::select(vec![LawKind::Continuous, LawKind::Paper, LawKind::Hysteretic, LawKind::Constant]),
+    ) {
+        let law = SectionLaw::new(&s, kind);
+        let st = law.station(x);
+        let k = k * curvature_scale(&s, eps);
+        let mut trial = vec![0.0; law.state_len()];
+        let slip = vec![0.0; law.state_len()];
+        let p = law.planar(&st, eps, k, &slip, &mut trial);
+        let v = law.vector(&st, eps, [0.0, k], &slip, &mut trial);
+        let tol = |a: f64| 1e-12 * a.abs().max(1e-300);
+        prop_assert!((p.moment - v.moment[1]).abs() <= tol(p.moment));
+        prop_assert!(v.moment[0].abs() <= tol(p.moment) + 1e-300);
+        prop_assert!((p.moment_curvature - v.moment_curvature[1][1]).abs() <= tol(p.moment_curvature));
+        prop_assert!((p.moment_strain - v.moment_strain[1]).abs() <= tol(p.moment_strain) + 1e-300);
+        prop_assert!((p.energy - v.energy).abs() <= tol(p.energy));
+    }
+
+    /// Hysteretic law along a random curvature path: dissipation never negative, each wire's
+    /// moment within its friction limit.
+    #[test]
+    fn hysteretic_dissipation_and_friction_limit(
+        s in strand(), eps in 1e-4..1e-2f64, x in 0.0..1.0f64,
+        path in prop::collection::vec(-20.0..20.0f64, 1..40),
+    ) {
+        let law = SectionLaw::new(&s, LawKind::Hysteretic);
+        let st = law.station(x);
+        let scale = curvature_scale(&s, eps);
+        let mut slip = vec![0.0; law.state_len()];
+        let mut trial = slip.clone();
+        for u in path {
+            let k = u * scale;
+            let r = law.planar(&st, eps, k, &slip, &mut trial);
+            prop_assert!(r.slip_work >= 0.0);
+            // Friction limit: |M - K_min kappa| <= sum of the wires' slip moments.
+            let limit: f64 = law.planar_wires(&st, eps, k, &slip).iter().map(|w| w.m_slip).sum();
+            let excess = (r.moment - s.min_bending_stiffness() * k).abs();
+            // Rounding of the subtraction is relative to K_min kappa.
+            let round = 1e-12 * (s.min_bending_stiffness() * k).abs();
+            prop_assert!(excess <= limit * (1.0 + 1e-12) + round, "{excess} > {limit}");
+            slip.copy_from_slice(&trial);
+        }
+    }
+}
+
+/// Edge cases give finite numbers: wires at phi = 0, phi -> 0, phi = +-pi, sin(phi) = 0,
+/// zero curvature, zero and negative strain.
+#[test]
+fn edge_cases_are_finite() {
+    for phase in [
+        0.0,
+        1e-300,
+        1e-12,
+        -1e-12,
+        PI,
+        -PI + 1e-15,
+        PI - 1e-12,
+        0.5 * PI,
+    ] {
+        let mut spec = common::table1();
+        spec.layers[0].phase = phase;
+        let s = Strand::new(spec).unwrap();
+        for kind in [
+            LawKind::Continuous,
+            LawKind::Paper,
+            LawKind::Hysteretic,
+            LawKind::Constant,
+        ] {
+            let law = SectionLaw::new(&s, kind);
+            let st = law.station(0.0);
+            for eps in [-1e-3, 0.0, 1e-3] {
+                for k in [0.0, 1e-300, 1e-12, -1e-12, 1.0, -1.0, 1e3] {
+                    let mut trial = vec![0.0; law.state_len()];
+                    let slip = vec![0.0; law.state_len()];
+                    let r = law.planar(&st, eps, k, &slip, &mut trial);
+                    for v in [r.moment, r.moment_curvature, r.moment_strain, r.energy] {
+                        assert!(v.is_finite(), "{kind} phase {phase} eps {eps} k {k}: {r:?}");
+                    }
+                    let v = law.vector(&st, eps, [0.3 * k, k], &slip, &mut trial);
+                    assert!(v.moment.iter().all(|m| m.is_finite()));
+                    assert!(
+                        v.moment_curvature.iter().flatten().all(|m| m.is_finite()),
+                        "{kind} phase {phase} eps {eps} k {k}: {v:?}"
+                    );
+                    for w in law.planar_wires(&st, eps, k, &slip) {
+                        assert!(w.k_stick.is_finite() && w.m_slip.is_finite());
+                        if let Some(c) = w.critical_curvature {
+                            assert!(c.is_finite() && c >= 0.0, "{w:?}");
+                        }
+                    }
+                    assert!(law.planar_secant(&st, eps, k, &slip).is_finite());
+                }
+            }
+        }
+    }
+}
+
+/// phi -> 0: the continuous law's critical curvature tends to sigma_a mu sin(alpha) / (E_w R_w)
+/// (SPEC 2); the paper's (23) to that divided by cos^2(alpha). phi -> pi: it grows without
+/// bound while the stick stiffness vanishes.
+#[test]
+fn critical_curvature_limits() {
+    let eps = 1e-3;
+    let a = 20f64.to_radians();
+    let (e, mu, rw) = (2.0e8, 0.3, 2.5e-3);
+    let sigma = e * a.cos().powi(2) * eps;
+    let limit = sigma * mu * a.sin() / (e * rw);
+    for (kind, want) in [
+        (LawKind::Continuous, limit),
+        (LawKind::Paper, limit / a.cos().powi(2)),
+    ] {
+        let mut prev = f64::INFINITY;
+        for phase in [1e-2, 1e-4, 1e-8, 1e-12] {
+            let mut spec = common::table1();
+            spec.layers[0].phase = phase;
+            let s = Strand::new(spec).unwrap();
+            let law = SectionLaw::new(&s, kind);
+            let w = law.planar_wires(&law.station(0.0), eps, -1.0, &[])[0];
+            let err = (w.critical_curvature.unwrap() - want).abs() / want;
+            assert!(
+                err <= prev.max(1e-9),
+                "{kind}: error {err} at phase {phase}"
+            );
+            prev = err;
+        }
+        assert!(prev < 1e-9, "{kind}: limit not reached ({prev})");
+    }
+    let mut last = 0.0;
+    for d in [1e-1, 1e-3, 1e-6] {
+        let mut spec = common::table1();
+        spec.layers[0].phase = PI - d;
+        let s = Strand::new(spec).unwrap();
+        let law = SectionLaw::new(&s, LawKind::Continuous);
+        let w = law.planar_wires(&law.station(0.0), eps, -1.0, &[])[0];
+        let c = w.critical_curvature.unwrap();
+        assert!(c > last);
+        assert!(w.k_stick < 1e-3 * d * d * 1e3);
+        last = c;
+    }
+}
+
+/// Hysteretic: after a preload to kappa_max, a closed cycle kappa_max -> -kappa_max ->
+/// kappa_max at fixed strain returns the stored energy to its start, and the dissipated work
+/// equals the area of the moment-curvature loop.
+#[test]
+fn hysteretic_cycle_energy_and_loop_area() {
+    let s = Strand::new(common::table1()).unwrap();
+    let law = SectionLaw::new(&s, LawKind::Hysteretic);
+    let eps = 2e-3;
+    for x in [0.0, 0.01, 0.0257] {
+        let st = law.station(x);
+        let kmax = 20.0 * curvature_scale(&s, eps);
+        let n = 20000;
+        let mut slip = vec![0.0; law.state_len()];
+        let mut trial = slip.clone();
+        let mut step = |k: f64, slip: &mut Vec<f64>| {
+            let r = law.planar(&st, eps, k, slip, &mut trial);
+            slip.copy_from_slice(&trial);
+            r
+        };
+        for i in 1..=n {
+            step(kmax * i as f64 / n as f64, &mut slip);
+        }
+        let start = step(kmax, &mut slip);
+        let (mut area, mut dissipated) = (0.0, 0.0);
+        let mut prev = start;
+        let mut k_prev = kmax;
+        for i in 1..=4 * n {
+            let t = i as f64 / (4 * n) as f64;
+            let k = kmax * (2.0 * PI * t).cos();
+            let r = step(k, &mut slip);
+            area += 0.5 * (r.moment + prev.moment) * (k - k_prev);
+            dissipated += r.slip_work;
+            prev = r;
+            k_prev = k;
+        }
+        assert!(
+            (prev.energy - start.energy).abs() <= 1e-12 * start.energy,
+            "stored energy {} -> {}",
+            start.energy,
+            prev.energy
+        );
+        assert!(dissipated > 0.0);
+        // The loop is closed, so its area is the work done on the section, all dissipated.
+        let rel = (area - dissipated).abs() / dissipated;
+        assert!(
+            rel < 1e-3,
+            "loop area {area} vs dissipated {dissipated} ({rel})"
+        );
+    }
+}
+
+/// Hysteretic: unloading from full slip re-sticks every wire: the tangent is
+/// K_min + sum K_stick_i.
+#[test]
+fn hysteretic_unloading_slope_is_all_stick() {
+    let s = Strand::new(common::table1()).unwrap();
+    let law = SectionLaw::new(&s, LawKind::Hysteretic);
+    let eps = 2e-3;
+    for x in [0.0, 0.0031, 0.02] {
+        let st = law.station(x);
+        let mut slip = vec![0.0; law.state_len()];
+        let mut trial = slip.clone();
+        let kmax = 1e4 * curvature_scale(&s, eps);
+        let mut loaded = Default::default();
+        for i in 1..=100 {
+            loaded = law.planar(&st, eps, -kmax * i as f64 / 100.0, &slip, &mut trial);
+            slip.copy_from_slice(&trial);
+        }
+        let loaded: strand_core::PlanarResponse = loaded;
+        // Every wire with a lever slips at kmax.
+        let levered = law
+            .planar_wires(&st, eps, -kmax, &slip)
+            .iter()
+            .filter(|w| w.k_stick > 1e-12 * s.max_bending_stiffness())
+            .count();
+        assert_eq!(loaded.slipping, levered);
+        let dk = 1e-6 * kmax;
+        let un = law.planar(&st, eps, -kmax + dk, &slip, &mut trial);
+        let slope = (un.moment - loaded.moment) / dk;
+        let kstick: f64 = law
+            .planar_wires(&st, eps, -kmax, &slip)
+            .iter()
+            .map(|w| w.k_stick)
+            .sum();
+        let want = s.min_bending_stiffness() + kstick;
+        assert!(
+            (slope - want).abs() <= 1e-8 * want,
+            "slope {slope} vs {want}"
+        );
+        assert_eq!(un.slipping, 0);
+        assert!((un.moment_curvature - want).abs() <= 1e-12 * want);
+    }
+}
+
+/// The traditional (`constant`) law is linear with the envelope cylinder's EI and EA.
+#[test]
+fn constant_law_is_the_traditional_beam() {
+    let s = Strand::new(common::table1()).unwrap();
+    let law = SectionLaw::new(&s, LawKind::Constant);
+    let t = s.traditional();
+    let st = law.station(0.1);
+    let r = law.planar(&st, 1e-3, -2.0, &[], &mut []);
+    assert!((r.moment + 2.0 * t.bending_stiffness).abs() < 1e-15);
+    assert!((r.axial_force - 1e-3 * t.axial_stiffness).abs() < 1e-12);
+    assert_eq!(law.planar_wires(&st, 1e-3, -2.0, &[]).len(), 0);
+}

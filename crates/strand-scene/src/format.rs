@@ -1,0 +1,187 @@
+//! The scene file as written (SPEC 6): serde types that reject unknown fields.
+//!
+//! These mirror the JSON one to one; [`crate::Scene`] is the validated form. Lengths in m,
+//! moduli in Pa, densities in kg/m^3, angles in degrees, times in s, accelerations in m/s^2.
+
+use serde::{Deserialize, Serialize};
+
+/// A scene file.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Scene name, used in result files.
+    pub name: String,
+    /// The strand.
+    pub strand: StrandFile,
+    /// Section law of the equivalent model: `continuous` (default), `paper`, `hysteretic`.
+    #[serde(default)]
+    pub law: Option<String>,
+    /// Supports, at most one per end.
+    #[serde(default)]
+    pub supports: Vec<SupportFile>,
+    /// Initial state: the strand starts straight and at rest.
+    #[serde(default)]
+    pub initial: Option<InitialFile>,
+    /// Loads.
+    #[serde(default)]
+    pub loads: Option<LoadsFile>,
+    /// Static or dynamic analysis.
+    pub analysis: AnalysisFile,
+    /// Which models to run, with their discretisation.
+    pub models: ModelsFile,
+}
+
+/// `strand`: length, core, layers, friction (SPEC 1).
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct StrandFile {
+    /// Strand length L (m).
+    pub length: f64,
+    /// The straight core wire.
+    pub core: WireFile,
+    /// Helical layers (zero or one).
+    #[serde(default)]
+    pub layers: Vec<LayerFile>,
+    /// Wire-core friction coefficient mu (default 0.3).
+    #[serde(default)]
+    pub friction: Option<f64>,
+}
+
+/// A core wire.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct WireFile {
+    /// Diameter (m).
+    pub diameter: f64,
+    /// Young's modulus (Pa).
+    pub youngs_modulus: f64,
+    /// Poisson ratio (-).
+    pub poisson_ratio: f64,
+    /// Density (kg/m^3).
+    pub density: f64,
+}
+
+/// A helical layer: give either `lay_angle_deg` or `pitch`.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct LayerFile {
+    /// Number of wires m.
+    pub wires: i64,
+    /// Wire diameter (m).
+    pub diameter: f64,
+    /// Lay angle alpha (deg), in (0, 90).
+    #[serde(default)]
+    pub lay_angle_deg: Option<f64>,
+    /// Pitch P = 2 pi R_w / tan(alpha) (m), instead of the lay angle.
+    #[serde(default)]
+    pub pitch: Option<f64>,
+    /// Phase of wire 1 at x = 0 (deg), default 0.
+    #[serde(default)]
+    pub phase_deg: Option<f64>,
+    /// `right` (default: phase grows with x) or `left`.
+    #[serde(default)]
+    pub lay_direction: Option<String>,
+    /// Young's modulus (Pa).
+    pub youngs_modulus: f64,
+    /// Poisson ratio (-).
+    pub poisson_ratio: f64,
+    /// Density (kg/m^3).
+    pub density: f64,
+}
+
+/// A support at one end.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SupportFile {
+    /// `start` (x = 0) or `end` (x = L).
+    pub at: String,
+    /// `clamped` (position and tangent fixed) or `pinned` (position fixed).
+    pub kind: String,
+}
+
+/// Initial state.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct InitialFile {
+    /// Direction of the straight strand from the origin (normalised), default +X.
+    #[serde(default)]
+    pub direction: Option<[f64; 3]>,
+}
+
+/// Loads.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct LoadsFile {
+    /// Gravitational acceleration (m/s^2); the load per length is the mass per length times it.
+    #[serde(default)]
+    pub gravity: Option<[f64; 3]>,
+}
+
+/// Analysis: `kind` is `static` or `dynamic`; the other fields belong to one of them.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct AnalysisFile {
+    /// `static` or `dynamic`.
+    pub kind: String,
+    /// Static: number of load steps (default 20).
+    #[serde(default)]
+    pub load_steps: Option<i64>,
+    /// Dynamic: simulated time (s).
+    #[serde(default)]
+    pub duration: Option<f64>,
+    /// Dynamic: `verlet` or `generalized-alpha`.
+    #[serde(default)]
+    pub integrator: Option<String>,
+    /// Dynamic: time step (s); optional for `verlet` (the stable step is estimated).
+    #[serde(default)]
+    pub time_step: Option<f64>,
+    /// Dynamic: interval between output frames (s).
+    #[serde(default)]
+    pub output_interval: Option<f64>,
+    /// Dynamic, generalized-alpha: spectral radius at infinite frequency in [0, 1].
+    #[serde(default)]
+    pub spectral_radius: Option<f64>,
+}
+
+/// Models to run.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq, Default)]
+#[serde(deny_unknown_fields)]
+pub struct ModelsFile {
+    /// The equivalent ANCF beam with the scene's section law.
+    #[serde(default)]
+    pub equivalent: Option<BeamModelFile>,
+    /// The traditional ANCF beam (constant EI of the envelope cylinder).
+    #[serde(default)]
+    pub traditional: Option<BeamModelFile>,
+    /// The fine finite-segment model.
+    #[serde(default)]
+    pub fine: Option<FineModelFile>,
+}
+
+/// Discretisation of a beam model.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct BeamModelFile {
+    /// Number of elements.
+    pub elements: i64,
+    /// Gauss points per element for the bending term (default: from the wire pitch).
+    #[serde(default)]
+    pub integration_points: Option<i64>,
+    /// Traditional model: mass per length (kg/m); default the strand's.
+    #[serde(default)]
+    pub mass_per_length: Option<f64>,
+}
+
+/// Discretisation of the fine model.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct FineModelFile {
+    /// Segments per helical wire (the core gets as many over its shorter length).
+    pub segments_per_wire: i64,
+    /// Allowed contact penetration as a fraction of the wire diameter (default 1e-3).
+    #[serde(default)]
+    pub penetration: Option<f64>,
+    /// Bind the wires together at the free end (default false).
+    #[serde(default)]
+    pub bind_free_end: Option<bool>,
+}

@@ -1,0 +1,600 @@
+//! The validated scene (SPEC 6) and its parser.
+//!
+//! Parsing rejects unknown fields and wrong types with the JSON path of the fault
+//! (`serde_path_to_error`); validation then checks values and names the field the same way,
+//! e.g. `strand.layers[0].lay_angle_deg: must be in (0, 90), got 95`.
+
+use std::path::Path;
+
+use strand_core::{
+    DEFAULT_FRICTION, InputError, LawKind, LayDirection, LayerSpec, Material, Strand, StrandSpec,
+    WireSpec,
+};
+
+use crate::format::{AnalysisFile, BeamModelFile, FineModelFile, LayerFile, SceneFile, WireFile};
+
+/// A rejected scene: the JSON path of the fault and what is wrong.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{}{message}", if path.is_empty() { String::new() } else { format!("{path}: ") })]
+pub struct SceneError {
+    /// JSON path of the offending value (empty for the whole file).
+    pub path: String,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl SceneError {
+    fn new(path: impl Into<String>, message: impl Into<String>) -> Self {
+        SceneError {
+            path: path.into(),
+            message: message.into(),
+        }
+    }
+}
+
+impl From<InputError> for SceneError {
+    fn from(e: InputError) -> Self {
+        SceneError::new(e.field, e.message)
+    }
+}
+
+/// Largest memory a model may ask for before the scene is refused (bytes).
+pub const MEMORY_LIMIT: f64 = 4.0 * (1u64 << 30) as f64;
+
+/// Which end of the strand.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum End {
+    /// x = 0.
+    Start,
+    /// x = L.
+    End,
+}
+
+/// How an end is held.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SupportKind {
+    /// Position and tangent fixed.
+    Clamped,
+    /// Position fixed, free to rotate.
+    Pinned,
+}
+
+/// A support.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Support {
+    /// Where.
+    pub at: End,
+    /// How.
+    pub kind: SupportKind,
+}
+
+/// Time integrator of a dynamic analysis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IntegratorKind {
+    /// Stoermer-Verlet, explicit (the paper's).
+    Verlet,
+    /// Generalized-alpha, implicit.
+    GeneralizedAlpha,
+}
+
+/// A dynamic analysis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Dynamic {
+    /// Simulated time (s).
+    pub duration: f64,
+    /// Integrator.
+    pub integrator: IntegratorKind,
+    /// Time step (s); `None` lets Verlet use its estimated stable step.
+    pub time_step: Option<f64>,
+    /// Interval between output frames (s).
+    pub output_interval: f64,
+    /// Generalized-alpha spectral radius at infinite frequency, in [0, 1].
+    pub spectral_radius: f64,
+}
+
+/// The analysis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Analysis {
+    /// Static equilibrium by load stepping.
+    Static {
+        /// Number of load steps.
+        load_steps: usize,
+    },
+    /// Dynamics from rest.
+    Dynamic(Dynamic),
+}
+
+/// Discretisation of a beam model (equivalent or traditional).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BeamModel {
+    /// Number of elements.
+    pub elements: usize,
+    /// Gauss points per element; `None` chooses from the wire pitch.
+    pub integration_points: Option<usize>,
+    /// Mass per length (kg/m); `None` uses the strand's.
+    pub mass_per_length: Option<f64>,
+}
+
+/// Discretisation of the fine model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FineModel {
+    /// Segments per helical wire.
+    pub segments_per_wire: usize,
+    /// Allowed contact penetration as a fraction of the wire diameter.
+    pub penetration: f64,
+    /// Whether the wires are bound together at the free end.
+    pub bind_free_end: bool,
+}
+
+/// The models a scene runs.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Models {
+    /// Equivalent ANCF beam.
+    pub equivalent: Option<BeamModel>,
+    /// Traditional ANCF beam.
+    pub traditional: Option<BeamModel>,
+    /// Fine finite-segment model.
+    pub fine: Option<FineModel>,
+}
+
+/// A validated scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// Scene name.
+    pub name: String,
+    /// The strand.
+    pub strand: Strand,
+    /// Section law of the equivalent model.
+    pub law: LawKind,
+    /// Supports.
+    pub supports: Vec<Support>,
+    /// Unit direction of the initially straight strand.
+    pub direction: [f64; 3],
+    /// Gravitational acceleration (m/s^2).
+    pub gravity: [f64; 3],
+    /// Analysis.
+    pub analysis: Analysis,
+    /// Models to run.
+    pub models: Models,
+    /// The file as parsed (for provenance in result files).
+    pub file: SceneFile,
+}
+
+impl Scene {
+    /// Reads and validates a scene file.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| SceneError::new("", format!("cannot read {}: {e}", path.display())))?;
+        Scene::parse(&text)
+    }
+
+    /// Parses and validates scene JSON.
+    pub fn parse(text: &str) -> Result<Scene, SceneError> {
+        if text.trim().is_empty() {
+            return Err(SceneError::new("", "the scene file is empty"));
+        }
+        let de = &mut serde_json::Deserializer::from_str(text);
+        let file: SceneFile = serde_path_to_error::deserialize(de).map_err(|e| {
+            let path = e.path().to_string();
+            let path = if path == "." { String::new() } else { path };
+            SceneError::new(path, e.into_inner().to_string())
+        })?;
+        Scene::from_file(file)
+    }
+
+    /// Validates a parsed scene file.
+    pub fn from_file(file: SceneFile) -> Result<Scene, SceneError> {
+        if file.name.trim().is_empty() {
+            return Err(SceneError::new("name", "must not be empty"));
+        }
+        let strand = strand(&file)?;
+        let law = match file.law.as_deref() {
+            None | Some("continuous") => LawKind::Continuous,
+            Some("paper") => LawKind::Paper,
+            Some("hysteretic") => LawKind::Hysteretic,
+            Some("constant") => {
+                return Err(SceneError::new(
+                    "law",
+                    "`constant` is the traditional model's law: add models.traditional instead",
+                ));
+            }
+            Some(other) => {
+                return Err(SceneError::new(
+                    "law",
+                    format!("unknown law `{other}`: expected continuous, paper or hysteretic"),
+                ));
+            }
+        };
+
+        let mut supports: Vec<Support> = Vec::new();
+        for (i, s) in file.supports.iter().enumerate() {
+            let at = match s.at.as_str() {
+                "start" => End::Start,
+                "end" => End::End,
+                o => {
+                    return Err(SceneError::new(
+                        format!("supports[{i}].at"),
+                        format!("unknown end `{o}`: expected start or end"),
+                    ));
+                }
+            };
+            let kind = match s.kind.as_str() {
+                "clamped" => SupportKind::Clamped,
+                "pinned" => SupportKind::Pinned,
+                o => {
+                    return Err(SceneError::new(
+                        format!("supports[{i}].kind"),
+                        format!("unknown support `{o}`: expected clamped or pinned"),
+                    ));
+                }
+            };
+            if supports.iter().any(|p| p.at == at) {
+                return Err(SceneError::new(
+                    format!("supports[{i}].at"),
+                    "this end already has a support",
+                ));
+            }
+            supports.push(Support { at, kind });
+        }
+
+        let direction = match file.initial.as_ref().and_then(|i| i.direction) {
+            None => [1.0, 0.0, 0.0],
+            Some(d) => {
+                let p = "initial.direction";
+                finite_vec(p, &d)?;
+                let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                if n == 0.0 {
+                    return Err(SceneError::new(p, "must not be the zero vector"));
+                }
+                [d[0] / n, d[1] / n, d[2] / n]
+            }
+        };
+        let gravity = match file.loads.as_ref().and_then(|l| l.gravity) {
+            None => [0.0; 3],
+            Some(g) => {
+                finite_vec("loads.gravity", &g)?;
+                g
+            }
+        };
+        let analysis = analysis(&file.analysis)?;
+        if matches!(analysis, Analysis::Static { .. }) && supports.is_empty() {
+            return Err(SceneError::new(
+                "supports",
+                "a static analysis needs at least one support",
+            ));
+        }
+        let models = models(&file, &strand)?;
+        Ok(Scene {
+            name: file.name.clone(),
+            strand,
+            law,
+            supports,
+            direction,
+            gravity,
+            analysis,
+            models,
+            file,
+        })
+    }
+
+    /// Whether the scene stays in the global XY plane (strand direction and gravity have no Z
+    /// component), so the planar element can be used.
+    pub fn is_planar(&self) -> bool {
+        self.direction[2] == 0.0 && self.gravity[2] == 0.0
+    }
+}
+
+fn finite(path: &str, v: f64) -> Result<f64, SceneError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(SceneError::new(
+            path,
+            format!("must be a finite number, got {v}"),
+        ))
+    }
+}
+
+fn finite_vec(path: &str, v: &[f64]) -> Result<(), SceneError> {
+    for (i, x) in v.iter().enumerate() {
+        finite(&format!("{path}[{i}]"), *x)?;
+    }
+    Ok(())
+}
+
+fn positive(path: &str, v: f64) -> Result<f64, SceneError> {
+    finite(path, v)?;
+    if v > 0.0 {
+        Ok(v)
+    } else {
+        Err(SceneError::new(path, format!("must be positive, got {v}")))
+    }
+}
+
+fn count(path: &str, v: i64, min: i64, max: i64) -> Result<usize, SceneError> {
+    if v < min || v > max {
+        Err(SceneError::new(
+            path,
+            format!("must be a whole number from {min} to {max}, got {v}"),
+        ))
+    } else {
+        Ok(v as usize)
+    }
+}
+
+fn material(w: &WireFile) -> Material {
+    Material {
+        youngs_modulus: w.youngs_modulus,
+        poisson_ratio: w.poisson_ratio,
+        density: w.density,
+    }
+}
+
+fn strand(file: &SceneFile) -> Result<Strand, SceneError> {
+    let s = &file.strand;
+    let core = WireSpec {
+        diameter: s.core.diameter,
+        material: material(&s.core),
+    };
+    let mut layers = Vec::new();
+    for (k, l) in s.layers.iter().enumerate() {
+        layers.push(layer(k, l, &core)?);
+    }
+    let spec = StrandSpec {
+        length: s.length,
+        core,
+        layers,
+        friction: s.friction.unwrap_or(DEFAULT_FRICTION),
+    };
+    Strand::new(spec).map_err(|e| e.within("strand").into())
+}
+
+fn layer(k: usize, l: &LayerFile, core: &WireSpec) -> Result<LayerSpec, SceneError> {
+    let p = |f: &str| format!("strand.layers[{k}].{f}");
+    let wires = count(&p("wires"), l.wires, 1, 1000)?;
+    let lay_angle = match (l.lay_angle_deg, l.pitch) {
+        (Some(_), Some(_)) => {
+            return Err(SceneError::new(
+                p("pitch"),
+                "give either lay_angle_deg or pitch, not both",
+            ));
+        }
+        (None, None) => {
+            return Err(SceneError::new(
+                format!("strand.layers[{k}]"),
+                "needs lay_angle_deg or pitch",
+            ));
+        }
+        (Some(a), None) => finite(&p("lay_angle_deg"), a)?.to_radians(),
+        (None, Some(pitch)) => {
+            let pitch = positive(&p("pitch"), pitch)?;
+            let rw = 0.5 * (core.diameter + l.diameter);
+            (2.0 * std::f64::consts::PI * rw / pitch).atan()
+        }
+    };
+    let direction = match l.lay_direction.as_deref() {
+        None | Some("right") => LayDirection::Right,
+        Some("left") => LayDirection::Left,
+        Some(o) => {
+            return Err(SceneError::new(
+                p("lay_direction"),
+                format!("unknown lay direction `{o}`: expected right or left"),
+            ));
+        }
+    };
+    Ok(LayerSpec {
+        wires,
+        wire: WireSpec {
+            diameter: l.diameter,
+            material: Material {
+                youngs_modulus: l.youngs_modulus,
+                poisson_ratio: l.poisson_ratio,
+                density: l.density,
+            },
+        },
+        lay_angle,
+        phase: finite(&p("phase_deg"), l.phase_deg.unwrap_or(0.0))?.to_radians(),
+        direction,
+    })
+}
+
+fn analysis(a: &AnalysisFile) -> Result<Analysis, SceneError> {
+    let only = |field: &str, present: bool, kind: &str| {
+        if present {
+            Err(SceneError::new(
+                format!("analysis.{field}"),
+                format!("only for a {kind} analysis"),
+            ))
+        } else {
+            Ok(())
+        }
+    };
+    match a.kind.as_str() {
+        "static" => {
+            only("duration", a.duration.is_some(), "dynamic")?;
+            only("integrator", a.integrator.is_some(), "dynamic")?;
+            only("time_step", a.time_step.is_some(), "dynamic")?;
+            only("output_interval", a.output_interval.is_some(), "dynamic")?;
+            only("spectral_radius", a.spectral_radius.is_some(), "dynamic")?;
+            let load_steps = count(
+                "analysis.load_steps",
+                a.load_steps.unwrap_or(20),
+                1,
+                1_000_000,
+            )?;
+            Ok(Analysis::Static { load_steps })
+        }
+        "dynamic" => {
+            only("load_steps", a.load_steps.is_some(), "static")?;
+            let duration = positive(
+                "analysis.duration",
+                a.duration.ok_or_else(|| {
+                    SceneError::new("analysis.duration", "a dynamic analysis needs a duration")
+                })?,
+            )?;
+            let integrator = match a.integrator.as_deref() {
+                Some("verlet") => IntegratorKind::Verlet,
+                Some("generalized-alpha") => IntegratorKind::GeneralizedAlpha,
+                Some(o) => {
+                    return Err(SceneError::new(
+                        "analysis.integrator",
+                        format!("unknown integrator `{o}`: expected verlet or generalized-alpha"),
+                    ));
+                }
+                None => {
+                    return Err(SceneError::new(
+                        "analysis.integrator",
+                        "a dynamic analysis needs an integrator: verlet or generalized-alpha",
+                    ));
+                }
+            };
+            let time_step = match a.time_step {
+                Some(h) => {
+                    let h = positive("analysis.time_step", h)?;
+                    if h > duration {
+                        return Err(SceneError::new(
+                            "analysis.time_step",
+                            format!("{h} s is longer than the duration {duration} s"),
+                        ));
+                    }
+                    Some(h)
+                }
+                None if integrator == IntegratorKind::GeneralizedAlpha => {
+                    return Err(SceneError::new(
+                        "analysis.time_step",
+                        "generalized-alpha needs a time step",
+                    ));
+                }
+                None => None,
+            };
+            let output_interval = match a.output_interval {
+                Some(o) => positive("analysis.output_interval", o)?,
+                None => duration / 100.0,
+            };
+            if integrator != IntegratorKind::GeneralizedAlpha {
+                only(
+                    "spectral_radius",
+                    a.spectral_radius.is_some(),
+                    "generalized-alpha",
+                )?;
+            }
+            let rho = finite("analysis.spectral_radius", a.spectral_radius.unwrap_or(0.9))?;
+            if !(0.0..=1.0).contains(&rho) {
+                return Err(SceneError::new(
+                    "analysis.spectral_radius",
+                    format!("must be in [0, 1], got {rho}"),
+                ));
+            }
+            Ok(Analysis::Dynamic(Dynamic {
+                duration,
+                integrator,
+                time_step,
+                output_interval,
+                spectral_radius: rho,
+            }))
+        }
+        o => Err(SceneError::new(
+            "analysis.kind",
+            format!("unknown analysis `{o}`: expected static or dynamic"),
+        )),
+    }
+}
+
+/// Rough memory of a beam model with `n` elements and `wires` helical wires (bytes): nodal
+/// vectors and banded matrices (~3 KB per element) and section stations (10 points, 48 B per
+/// wire each).
+fn beam_memory(n: usize, wires: usize) -> f64 {
+    n as f64 * (3072.0 + 10.0 * (64.0 + 48.0 * wires as f64))
+}
+
+fn beam(
+    path: &str,
+    m: &BeamModelFile,
+    strand: &Strand,
+    traditional: bool,
+) -> Result<BeamModel, SceneError> {
+    let elements = count(&format!("{path}.elements"), m.elements, 1, i64::MAX)?;
+    let wires = strand.layer().map_or(0, |l| l.wires());
+    let need = beam_memory(elements, wires);
+    if need > MEMORY_LIMIT {
+        return Err(SceneError::new(
+            format!("{path}.elements"),
+            format!(
+                "{elements} elements would need about {:.1} GiB of memory (limit {:.0} GiB)",
+                need / (1u64 << 30) as f64,
+                MEMORY_LIMIT / (1u64 << 30) as f64
+            ),
+        ));
+    }
+    let integration_points = match m.integration_points {
+        Some(n) => Some(count(&format!("{path}.integration_points"), n, 1, 10)?),
+        None => None,
+    };
+    let mass_per_length = match m.mass_per_length {
+        Some(_) if !traditional => {
+            return Err(SceneError::new(
+                format!("{path}.mass_per_length"),
+                "only for the traditional model (the equivalent model uses the strand's, eq. (44))",
+            ));
+        }
+        Some(v) => Some(positive(&format!("{path}.mass_per_length"), v)?),
+        None => None,
+    };
+    Ok(BeamModel {
+        elements,
+        integration_points,
+        mass_per_length,
+    })
+}
+
+fn fine(m: &FineModelFile, strand: &Strand) -> Result<FineModel, SceneError> {
+    let p = "models.fine.segments_per_wire";
+    let segments_per_wire = count(p, m.segments_per_wire, 2, i64::MAX)?;
+    let wires = 1 + strand.layer().map_or(0, |l| l.wires());
+    // Poses, velocities, joint and contact data: about 2 KB per segment.
+    let need = segments_per_wire as f64 * wires as f64 * 2048.0;
+    if need > MEMORY_LIMIT {
+        return Err(SceneError::new(
+            p,
+            format!(
+                "{segments_per_wire} segments per wire would need about {:.1} GiB of memory",
+                need / (1u64 << 30) as f64
+            ),
+        ));
+    }
+    let penetration = finite("models.fine.penetration", m.penetration.unwrap_or(1e-3))?;
+    if !(penetration > 0.0 && penetration < 0.5) {
+        return Err(SceneError::new(
+            "models.fine.penetration",
+            format!("must be in (0, 0.5) (a fraction of the wire diameter), got {penetration}"),
+        ));
+    }
+    Ok(FineModel {
+        segments_per_wire,
+        penetration,
+        bind_free_end: m.bind_free_end.unwrap_or(false),
+    })
+}
+
+fn models(file: &SceneFile, strand: &Strand) -> Result<Models, SceneError> {
+    let m = &file.models;
+    if m.equivalent.is_none() && m.traditional.is_none() && m.fine.is_none() {
+        return Err(SceneError::new(
+            "models",
+            "name at least one model: equivalent, traditional or fine",
+        ));
+    }
+    Ok(Models {
+        equivalent: m
+            .equivalent
+            .as_ref()
+            .map(|b| beam("models.equivalent", b, strand, false))
+            .transpose()?,
+        traditional: m
+            .traditional
+            .as_ref()
+            .map(|b| beam("models.traditional", b, strand, true))
+            .transpose()?,
+        fine: m.fine.as_ref().map(|f| fine(f, strand)).transpose()?,
+    })
+}

@@ -1,0 +1,206 @@
+//! Bad input is rejected with the JSON path of the fault: one test per SPEC 1 rule, unknown
+//! fields, wrong types, and the scene-level rules.
+
+use serde_json::{Value, json};
+use strand_scene::Scene;
+
+fn good() -> Value {
+    let text = include_str!("../../../validation/paper-fig7-g8.json");
+    serde_json::from_str(text).unwrap()
+}
+
+/// Sets `pointer` (JSON pointer) in the good scene to `v`, parses, and returns the error.
+fn reject(pointer: &str, v: Value) -> strand_scene::SceneError {
+    let mut s = good();
+    *s.pointer_mut(pointer)
+        .unwrap_or_else(|| panic!("no {pointer}")) = v;
+    Scene::parse(&s.to_string()).expect_err(&format!("{pointer} should be rejected"))
+}
+
+fn assert_path(e: &strand_scene::SceneError, path: &str) {
+    assert_eq!(e.path, path, "wrong path in `{e}`");
+    assert!(e.to_string().starts_with(&format!("{path}: ")), "{e}");
+}
+
+#[test]
+fn the_bundled_scenes_parse() {
+    for entry in
+        std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../../validation")).unwrap()
+    {
+        let p = entry.unwrap().path();
+        if p.extension().is_some_and(|e| e == "json") {
+            Scene::load(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+        }
+    }
+}
+
+#[test]
+fn non_positive_sizes_moduli_densities() {
+    for (ptr, path) in [
+        ("/strand/length", "strand.length"),
+        ("/strand/core/diameter", "strand.core.diameter"),
+        ("/strand/core/youngs_modulus", "strand.core.youngs_modulus"),
+        ("/strand/core/density", "strand.core.density"),
+        ("/strand/layers/0/diameter", "strand.layers[0].diameter"),
+        (
+            "/strand/layers/0/youngs_modulus",
+            "strand.layers[0].youngs_modulus",
+        ),
+        ("/strand/layers/0/density", "strand.layers[0].density"),
+    ] {
+        for v in [json!(0.0), json!(-1.0)] {
+            let e = reject(ptr, v);
+            assert_path(&e, path);
+            assert!(e.message.contains("positive"), "{e}");
+        }
+    }
+}
+
+#[test]
+fn lay_angle_outside_0_90() {
+    for v in [0.0, 90.0, -5.0, 95.0] {
+        let e = reject("/strand/layers/0/lay_angle_deg", json!(v));
+        assert_path(&e, "strand.layers[0].lay_angle_deg");
+        assert!(e.message.contains("(0, 90)"), "{e}");
+    }
+}
+
+#[test]
+fn fewer_than_one_wire() {
+    for v in [0, -3] {
+        assert_path(
+            &reject("/strand/layers/0/wires", json!(v)),
+            "strand.layers[0].wires",
+        );
+    }
+}
+
+#[test]
+fn negative_friction() {
+    assert_path(&reject("/strand/friction", json!(-0.1)), "strand.friction");
+}
+
+#[test]
+fn poisson_ratio_out_of_range() {
+    assert_path(
+        &reject("/strand/core/poisson_ratio", json!(0.7)),
+        "strand.core.poisson_ratio",
+    );
+}
+
+#[test]
+fn overlapping_layer() {
+    // Nine 2 mm wires around a 3 mm core overlap (six leave a 0.37 mm gap).
+    let e = reject("/strand/layers/0/wires", json!(9));
+    assert_path(&e, "strand.layers[0].wires");
+    assert!(e.message.contains("overlap"), "{e}");
+}
+
+#[test]
+fn unknown_field() {
+    let mut s = good();
+    s["strand"]["layers"][0]["colour"] = json!("red");
+    let e = Scene::parse(&s.to_string()).unwrap_err();
+    assert_eq!(e.path, "strand.layers[0].colour", "{e}");
+    assert!(e.message.contains("unknown field `colour`"), "{e}");
+    let mut s = good();
+    s["analysis"]["tolerance"] = json!(1e-3);
+    let e = Scene::parse(&s.to_string()).unwrap_err();
+    assert_eq!(e.path, "analysis.tolerance", "{e}");
+}
+
+#[test]
+fn wrong_type() {
+    let e = reject("/strand/core/diameter", json!("3 mm"));
+    assert_path(&e, "strand.core.diameter");
+    assert!(e.message.contains("invalid type"), "{e}");
+    let e = reject("/strand/layers/0/wires", json!(6.5));
+    assert_path(&e, "strand.layers[0].wires");
+    let e = reject("/loads/gravity", json!([0.0, -8.0]));
+    assert_path(&e, "loads.gravity");
+}
+
+#[test]
+fn empty_and_broken_files() {
+    assert!(Scene::parse("").unwrap_err().message.contains("empty"));
+    assert!(Scene::parse("   \n").is_err());
+    let e = Scene::parse("{\"name\": ").unwrap_err();
+    assert!(e.message.contains("EOF"), "{e}");
+    let e = Scene::parse("[1, 2]").unwrap_err();
+    assert!(e.message.contains("invalid type"), "{e}");
+    // JSON has no NaN or infinity; out-of-range numbers are parse errors with the path.
+    let text = good()
+        .to_string()
+        .replace("\"length\":0.4", "\"length\":1e999");
+    let e = Scene::parse(&text).unwrap_err();
+    assert_eq!(e.path, "strand.length", "{e}");
+}
+
+#[test]
+fn scene_level_rules() {
+    assert_path(&reject("/law", json!("cubic")), "law");
+    assert_path(&reject("/law", json!("constant")), "law");
+    assert_path(
+        &reject("/supports/0/kind", json!("glued")),
+        "supports[0].kind",
+    );
+    assert_path(&reject("/supports/0/at", json!("middle")), "supports[0].at");
+    assert_path(&reject("/supports", json!([])), "supports");
+    assert_path(
+        &reject("/initial/direction", json!([0.0, 0.0, 0.0])),
+        "initial.direction",
+    );
+    assert_path(&reject("/analysis/kind", json!("modal")), "analysis.kind");
+    assert_path(
+        &reject("/analysis/load_steps", json!(0)),
+        "analysis.load_steps",
+    );
+    assert_path(
+        &reject("/models/equivalent/elements", json!(0)),
+        "models.equivalent.elements",
+    );
+    assert_path(&reject("/models", json!({})), "models");
+    let e = reject("/models/equivalent/elements", json!(4_000_000_000i64));
+    assert_path(&e, "models.equivalent.elements");
+    assert!(e.message.contains("GiB"), "{e}");
+    let e = reject("/analysis", json!({"kind": "dynamic", "duration": 1.0}));
+    assert_path(&e, "analysis.integrator");
+    let e = reject(
+        "/analysis",
+        json!({"kind": "dynamic", "duration": 1.0, "integrator": "generalized-alpha"}),
+    );
+    assert_path(&e, "analysis.time_step");
+    let e = reject(
+        "/analysis",
+        json!({"kind": "dynamic", "duration": 1.0, "integrator": "verlet", "load_steps": 3}),
+    );
+    assert_path(&e, "analysis.load_steps");
+}
+
+#[test]
+fn pitch_instead_of_lay_angle() {
+    let mut s = good();
+    let layer = s["strand"]["layers"][0].as_object_mut().unwrap();
+    layer.remove("lay_angle_deg");
+    layer.insert("pitch".into(), json!(0.043157274384312425));
+    let scene = Scene::parse(&s.to_string()).unwrap();
+    let a = scene.strand.layer().unwrap().lay_angle().to_degrees();
+    assert!((a - 20.0).abs() < 1e-12, "{a}");
+    let mut both = good();
+    both["strand"]["layers"][0]["pitch"] = json!(0.04);
+    assert_path(
+        &Scene::parse(&both.to_string()).unwrap_err(),
+        "strand.layers[0].pitch",
+    );
+}
+
+#[test]
+fn defaults() {
+    let mut s = good();
+    s.as_object_mut().unwrap().remove("law");
+    s["strand"].as_object_mut().unwrap().remove("friction");
+    let scene = Scene::parse(&s.to_string()).unwrap();
+    assert_eq!(scene.law, strand_core::LawKind::Continuous);
+    assert_eq!(scene.strand.friction(), 0.3);
+    assert!(scene.is_planar());
+}
