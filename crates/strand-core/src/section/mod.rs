@@ -138,6 +138,11 @@ pub struct SectionResponse {
     pub moment_strain: [f64; 2],
     /// Stored energy density (J/m).
     pub energy: f64,
+    /// Derivative of the wires' stored energy with respect to the strain at fixed curvature
+    /// and slip (J/m): the part of the energy that the forces N, M do not derive from. Over a
+    /// strain increment d eps the section dissipates `-energy_strain d eps` (SPEC 2: the
+    /// non-potential work is reported as dissipation).
+    pub energy_strain: f64,
     /// Work dissipated by slip from the committed state to this trial (J/m; hysteretic law).
     pub slip_work: f64,
     /// Number of slipping wires.
@@ -159,6 +164,11 @@ pub struct PlanarResponse {
     pub moment_strain: f64,
     /// Stored energy density (J/m).
     pub energy: f64,
+    /// Derivative of the wires' stored energy with respect to the strain at fixed curvature
+    /// and slip (J/m): the part of the energy that the forces N, M do not derive from. Over a
+    /// strain increment d eps the section dissipates `-energy_strain d eps` (SPEC 2: the
+    /// non-potential work is reported as dissipation).
+    pub energy_strain: f64,
     /// Work dissipated by slip from the committed state to this trial (J/m; hysteretic law).
     pub slip_work: f64,
     /// Number of slipping wires.
@@ -311,6 +321,7 @@ impl SectionLaw {
             moment_strain: 0.0,
             energy: 0.5 * self.axial_stiffness * eps * eps
                 + 0.5 * self.base_bending * kappa * kappa,
+            energy_strain: 0.0,
             slip_work: 0.0,
             slipping: 0,
         };
@@ -321,9 +332,11 @@ impl SectionLaw {
             let f = self.slide(law, i, lever * kappa, scale, w.gains, slip, trial);
             r.moment += f.force * lever;
             r.moment_curvature += f.d_strain * lever * lever;
+            let cap_strain = (f.d_cap_pos * w.gains[0] - f.d_cap_neg * w.gains[1]) * dscale;
             r.moment_strain +=
                 (f.d_cap_pos * w.gains[0] + f.d_cap_neg * w.gains[1]) * dscale * lever;
             r.energy += f.energy;
+            r.energy_strain += f.d_energy_cap * cap_strain;
             r.slip_work += f.slip_work;
             r.slipping += usize::from(f.state == WireState::Slip);
         }
@@ -355,6 +368,7 @@ impl SectionLaw {
             moment_curvature: [[kb, 0.0], [0.0, kb]],
             moment_strain: [0.0; 2],
             energy: 0.5 * self.axial_stiffness * eps * eps + 0.5 * kb * knorm * knorm,
+            energy_strain: 0.0,
             slip_work: 0.0,
             slipping: 0,
         };
@@ -408,7 +422,9 @@ impl SectionLaw {
             }
             m += f.force * lambda;
             dm_deps += (f.d_cap_pos * gains[0] + f.d_cap_neg * gains[1]) * dscale * lambda;
+            let cap_strain = (f.d_cap_pos * gains[0] - f.d_cap_neg * gains[1]) * dscale;
             r.energy += f.energy;
+            r.energy_strain += f.d_energy_cap * cap_strain;
             r.slip_work += f.slip_work;
             r.slipping += usize::from(f.state == WireState::Slip);
         }

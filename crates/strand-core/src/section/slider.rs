@@ -33,6 +33,9 @@ pub(crate) struct SliderForce {
     pub d_cap_neg: f64,
     /// Stored energy per unit strand length (J/m).
     pub energy: f64,
+    /// d energy / d cap of the active side at fixed strain and slip (m/m): the slider's
+    /// energy depends on the friction limit, which depends on the strand's axial strain.
+    pub d_energy_cap: f64,
     /// Work dissipated by the slip of this trial step from the committed slip (J/m).
     pub slip_work: f64,
     /// Slip strain after the trial (hysteretic law; unchanged for the others).
@@ -60,17 +63,22 @@ pub(crate) fn slider(
         d_cap_pos: 0.0,
         d_cap_neg: 0.0,
         energy: 0.5 * f * f / k,
+        d_energy_cap: 0.0,
         slip_work: 0.0,
         slip,
         state: WireState::Stick,
     };
     // Force held at the friction limit on the side of `e`.
-    let sliding = |positive: bool, energy: f64, slip: f64, slip_work: f64| SliderForce {
+    let sliding = |positive: bool,
+                   (energy, d_energy_cap): (f64, f64),
+                   slip: f64,
+                   slip_work: f64| SliderForce {
         force: if positive { cap_pos } else { -cap_neg },
         d_strain: 0.0,
         d_cap_pos: if positive { 1.0 } else { 0.0 },
         d_cap_neg: if positive { 0.0 } else { -1.0 },
         energy,
+        d_energy_cap,
         slip_work,
         slip,
         state: WireState::Slip,
@@ -82,9 +90,11 @@ pub(crate) fn slider(
             if k * e.abs() <= cap {
                 stick(k * e, slip)
             } else {
-                // Energy: integral of the moment, 1/2 k e_c^2 + cap (|e| - e_c), e_c = cap / k.
+                // Energy: integral of the moment, 1/2 k e_c^2 + cap (|e| - e_c), e_c = cap / k,
+                // i.e. cap |e| - cap^2 / (2 k).
                 let ec = cap / k;
-                sliding(e >= 0.0, 0.5 * cap * ec + cap * (e.abs() - ec), slip, 0.0)
+                let energy = 0.5 * cap * ec + cap * (e.abs() - ec);
+                sliding(e >= 0.0, (energy, e.abs() - ec), slip, 0.0)
             }
         }
         LawKind::Paper => {
@@ -94,21 +104,20 @@ pub(crate) fn slider(
             if e.abs() <= ec {
                 stick(k * e, slip)
             } else {
-                sliding(
-                    e >= 0.0,
-                    0.5 * k * ec * ec + cap * (e.abs() - ec),
-                    slip,
-                    0.0,
-                )
+                // 1/2 k e_c^2 + cap (|e| - e_c) with e_c = cap / (k cos^2 alpha).
+                let energy = 0.5 * k * ec * ec + cap * (e.abs() - ec);
+                let d_cap = ec / paper_factor + e.abs() - 2.0 * ec;
+                sliding(e >= 0.0, (energy, d_cap), slip, 0.0)
             }
         }
         LawKind::Hysteretic => {
             let trial = k * (e - slip);
             if trial > cap_pos {
                 let s = e - cap_pos / k;
+                // The slip work books the energy change of a moving limit: no cap term.
                 sliding(
                     true,
-                    0.5 * cap_pos * cap_pos / k,
+                    (0.5 * cap_pos * cap_pos / k, 0.0),
                     s,
                     cap_pos * (s - slip).abs(),
                 )
@@ -116,7 +125,7 @@ pub(crate) fn slider(
                 let s = e + cap_neg / k;
                 sliding(
                     false,
-                    0.5 * cap_neg * cap_neg / k,
+                    (0.5 * cap_neg * cap_neg / k, 0.0),
                     s,
                     cap_neg * (s - slip).abs(),
                 )
