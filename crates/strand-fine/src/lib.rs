@@ -1,0 +1,51 @@
+//! Fine reference model of a strand (SPEC 4): every wire, the straight core and each helical
+//! wire, is its own chain of rigid cylindrical segments laid along its undeformed centreline
+//! and joined by the joint springs of the finite segment method (Hamper, Recuero, Escalona,
+//! Shabana 2012). The model uses only the strand's geometry and materials; none of the
+//! equivalent beam's section laws.
+//!
+//! * [`segment`]: rigid cylinders and their poses; [`so3`]: rotation helpers.
+//! * [`chain`]: a wire laid as a segment chain; [`joint`]: the joint springs.
+//! * [`model`]: wires, supports, gravity, state, loads and energies.
+//! * [`statics`]: Newton-Raphson static equilibrium; [`dynamics`]: symplectic time stepping.
+//!
+//! * [`contact`]: the wire-to-core contact element (penalty and Cundall-Strack friction).
+//!
+//! Units are SI throughout (m, kg, s, N, rad).
+//!
+//! Design:
+//! * Generalized coordinates per segment: centre translation and a world-frame rotation
+//!   increment (`R <- exp(dw) R`); loads are the exact negative gradient of the joint energy
+//!   in these coordinates, so the model conserves momentum and energy.
+//! * Supports are ground joints carrying the springs of the half segment between the wire's
+//!   end and its first segment's centre (a clamp holds position and rotation, a pin the
+//!   position only); with them the cantilever converges at second order in the segment
+//!   length.
+//! * Element tangents are central differences of the exact element loads (12 x 12 per
+//!   joint); the static solve factors their assembly with a sparse LU.
+//! * Loads are computed in parallel over wires; each wire's loads depend on that wire only,
+//!   so results are identical for any number of threads.
+//!
+//! The contact element is not yet part of [`FineModel`]: wires are joined only by their
+//! supports.
+
+pub mod chain;
+pub mod contact;
+pub mod dynamics;
+pub mod joint;
+pub mod model;
+pub mod segment;
+pub mod so3;
+pub mod statics;
+pub mod tangent;
+
+pub use chain::{Chain, WireSection};
+pub use contact::{ContactLaw, ContactLoad, ContactState, StickAnchor};
+pub use dynamics::{Integrator, stable_time_step};
+pub use joint::{JointLoad, JointSpring, JointStiffness};
+pub use model::{
+    Anchor, Discretisation, End, Energies, FineModel, ModelState, Support, Wire, WireLoads,
+    WireState,
+};
+pub use segment::{Pose, Segment};
+pub use statics::{StaticError, StaticOptions, StaticReport, solve_static};

@@ -1,0 +1,410 @@
+//! The fine model of a strand: one segment chain per wire, supports and gravity, its state
+//! (poses and momenta) and its loads and energies.
+//!
+//! Wire 0 is the core (straight along +X from the origin); wires 1..=m are the helical wires.
+//! Supports are ground joints: a clamp holds the wire's end point and its rotation, a pin only
+//! the end point. A support joint carries the springs of the half segment between the wire's
+//! end and the first segment's centre (twice the stiffness of an interior joint), so that the
+//! chain's bending flexibility is distributed over the whole wire length.
+
+use nalgebra::Vector3;
+use rayon::prelude::*;
+use strand_core::Strand;
+
+use crate::chain::{Chain, WireSection};
+use crate::joint::JointSpring;
+use crate::segment::Pose;
+
+/// Boundary condition at one end of the strand; it acts on every wire.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Support {
+    /// No support.
+    #[default]
+    Free,
+    /// End point and end rotation held.
+    Clamped,
+    /// End point held, rotation free.
+    Pinned,
+}
+
+/// End of a wire.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum End {
+    /// The start (x = 0).
+    Start,
+    /// The end (x = L).
+    End,
+}
+
+/// A ground joint holding one segment of a wire.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Anchor {
+    /// Index of the held segment in its chain.
+    pub segment: usize,
+    /// Fixed pose of the ground side of the joint.
+    pub ground: Pose,
+    /// The joint: body `a` is the ground, body `b` the segment.
+    pub joint: JointSpring,
+}
+
+/// A wire of the strand with its supports.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Wire {
+    /// The segment chain.
+    pub chain: Chain,
+    /// Ground joints acting on the wire.
+    pub anchors: Vec<Anchor>,
+}
+
+impl Wire {
+    /// Wire without supports.
+    pub fn new(chain: Chain) -> Self {
+        Self {
+            chain,
+            anchors: Vec::new(),
+        }
+    }
+
+    /// Adds the support `support` at the end `end` of the wire (nothing for `Free`).
+    pub fn support(&mut self, end: End, support: Support) {
+        if support == Support::Free {
+            return;
+        }
+        let c = &self.chain;
+        let (k, offset) = match end {
+            End::Start => (0, c.segments[0].start_offset()),
+            End::End => (c.len() - 1, c.segments[c.len() - 1].end_offset()),
+        };
+        let seg = c.segments[k];
+        let rest = c.rest[k];
+        let ground = Pose::new(rest.point(&offset), rest.rotation);
+        let mut stiffness = c.section.joint_stiffness(0.5 * seg.length);
+        if support == Support::Pinned {
+            stiffness.rotational = Vector3::zeros();
+        }
+        let joint = JointSpring::at_rest(&ground, Vector3::zeros(), &rest, offset, stiffness);
+        self.anchors.push(Anchor {
+            segment: k,
+            ground,
+            joint,
+        });
+    }
+
+    /// Adds loads at `poses` from joints, anchors and the gravity field `gravity` (m/s^2) to
+    /// `loads`; returns (spring energy, gravity potential) in J.
+    fn add_loads(
+        &self,
+        poses: &[Pose],
+        gravity: &Vector3<f64>,
+        loads: &mut WireLoads,
+    ) -> (f64, f64) {
+        let mut spring = self
+            .chain
+            .add_joint_loads(poses, &mut loads.forces, &mut loads.torques);
+        for a in &self.anchors {
+            let l = a.joint.evaluate(&a.ground, &poses[a.segment]);
+            loads.forces[a.segment] += l.force_b;
+            loads.torques[a.segment] += l.torque_b;
+            spring += l.energy;
+        }
+        let mut potential = 0.0;
+        for (k, s) in self.chain.segments.iter().enumerate() {
+            let w = gravity * s.mass;
+            loads.forces[k] += w;
+            potential -= w.dot(&poses[k].position);
+        }
+        (spring, potential)
+    }
+}
+
+/// How to discretise a strand.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Discretisation {
+    /// Segments of the core wire.
+    pub core_segments: usize,
+    /// Segments of each helical wire (the paper's Fig. 7 uses 77).
+    pub wire_segments: usize,
+}
+
+/// The fine model: wires, supports and gravity.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FineModel {
+    /// Wire 0 is the core; wires 1..=m the helical wires in phase order.
+    pub wires: Vec<Wire>,
+    /// Gravity (m/s^2), scaled by the load factor in static solves.
+    pub gravity: Vector3<f64>,
+}
+
+impl FineModel {
+    /// Model of `strand` with supports `start` at x = 0 and `end` at x = L on every wire.
+    pub fn from_strand(
+        strand: &Strand,
+        disc: Discretisation,
+        start: Support,
+        end: Support,
+    ) -> Self {
+        let mut wires = vec![Wire::new(Chain::straight(
+            WireSection::from_spec(strand.core()),
+            Vector3::zeros(),
+            strand.length(),
+            disc.core_segments,
+        ))];
+        if let Some(layer) = strand.layer() {
+            for i in 0..layer.wires() {
+                wires.push(Wire::new(Chain::helix(
+                    layer,
+                    i,
+                    strand.length(),
+                    disc.wire_segments,
+                )));
+            }
+        }
+        for w in &mut wires {
+            w.support(End::Start, start);
+            w.support(End::End, end);
+        }
+        Self {
+            wires,
+            gravity: Vector3::zeros(),
+        }
+    }
+
+    /// A single straight wire of section `section` and length `length` (m) along +X from the
+    /// origin in `n` segments.
+    pub fn single_wire(
+        section: WireSection,
+        length: f64,
+        n: usize,
+        start: Support,
+        end: Support,
+    ) -> Self {
+        let mut w = Wire::new(Chain::straight(section, Vector3::zeros(), length, n));
+        w.support(End::Start, start);
+        w.support(End::End, end);
+        Self {
+            wires: vec![w],
+            gravity: Vector3::zeros(),
+        }
+    }
+
+    /// Total number of segments.
+    pub fn segment_count(&self) -> usize {
+        self.wires.iter().map(|w| w.chain.len()).sum()
+    }
+
+    /// The model at rest in its undeformed configuration.
+    pub fn rest_state(&self) -> ModelState {
+        ModelState {
+            wires: self
+                .wires
+                .iter()
+                .map(|w| WireState {
+                    poses: w.chain.rest.clone(),
+                    velocities: vec![Vector3::zeros(); w.chain.len()],
+                    angular_momenta: vec![Vector3::zeros(); w.chain.len()],
+                })
+                .collect(),
+        }
+    }
+
+    /// Load buffers sized for this model.
+    pub fn load_buffers(&self) -> Vec<WireLoads> {
+        self.wires
+            .iter()
+            .map(|w| WireLoads {
+                forces: vec![Vector3::zeros(); w.chain.len()],
+                torques: vec![Vector3::zeros(); w.chain.len()],
+                spring_energy: 0.0,
+                gravity_energy: 0.0,
+            })
+            .collect()
+    }
+
+    /// Computes the loads on every segment at `state` with gravity scaled by `load_factor`,
+    /// in parallel over wires (each wire's loads depend only on that wire, so the result is
+    /// the same for any number of threads).
+    pub fn compute_loads(&self, state: &ModelState, load_factor: f64, loads: &mut [WireLoads]) {
+        let g = self.gravity * load_factor;
+        self.wires
+            .par_iter()
+            .zip(state.wires.par_iter())
+            .zip(loads.par_iter_mut())
+            .for_each(|((w, s), l)| {
+                l.forces.iter_mut().for_each(|f| *f = Vector3::zeros());
+                l.torques.iter_mut().for_each(|t| *t = Vector3::zeros());
+                let (spring, grav) = w.add_loads(&s.poses, &g, l);
+                l.spring_energy = spring;
+                l.gravity_energy = grav;
+            });
+    }
+
+    /// Energies at `state` (computes loads into `loads`).
+    pub fn energies(&self, state: &ModelState, loads: &mut [WireLoads]) -> Energies {
+        self.compute_loads(state, 1.0, loads);
+        let mut e = Energies::default();
+        for ((w, s), l) in self.wires.iter().zip(&state.wires).zip(loads.iter()) {
+            e.spring += l.spring_energy;
+            e.gravity += l.gravity_energy;
+            for (k, seg) in w.chain.segments.iter().enumerate() {
+                e.kinetic_translation += 0.5 * seg.mass * s.velocities[k].norm_squared();
+                e.kinetic_rotation += seg.rotational_energy(&s.poses[k], &s.angular_momenta[k]);
+            }
+        }
+        e
+    }
+
+    /// Centreline of the core (the strand centreline) at `state` (m).
+    pub fn core_centreline(&self, state: &ModelState) -> Vec<Vector3<f64>> {
+        self.wires[0].chain.centreline(&state.wires[0].poses)
+    }
+}
+
+/// Poses and momenta of one wire's segments.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WireState {
+    /// Pose of each segment.
+    pub poses: Vec<Pose>,
+    /// Velocity of each segment's centre (m/s).
+    pub velocities: Vec<Vector3<f64>>,
+    /// Angular momentum of each segment about its centre, world axes (kg m^2/s).
+    pub angular_momenta: Vec<Vector3<f64>>,
+}
+
+/// State of the whole model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelState {
+    /// One entry per wire, in the model's wire order.
+    pub wires: Vec<WireState>,
+}
+
+/// Loads on one wire's segments and its energies.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WireLoads {
+    /// Resultant force on each segment (N).
+    pub forces: Vec<Vector3<f64>>,
+    /// Resultant torque on each segment about its centre (N m).
+    pub torques: Vec<Vector3<f64>>,
+    /// Elastic energy of the wire's joints and anchors (J).
+    pub spring_energy: f64,
+    /// Gravity potential -sum m g . x (J).
+    pub gravity_energy: f64,
+}
+
+/// Energies of the model (J).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Energies {
+    /// Translational kinetic energy.
+    pub kinetic_translation: f64,
+    /// Rotational kinetic energy.
+    pub kinetic_rotation: f64,
+    /// Gravity potential relative to the origin.
+    pub gravity: f64,
+    /// Elastic energy of joints and supports.
+    pub spring: f64,
+}
+
+impl Energies {
+    /// Sum of all energies.
+    pub fn total(&self) -> f64 {
+        self.kinetic_translation + self.kinetic_rotation + self.gravity + self.spring
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::chain::tests::table1;
+    use nalgebra::UnitQuaternion;
+
+    fn max_loads(loads: &[WireLoads]) -> (f64, f64) {
+        let f = loads
+            .iter()
+            .flat_map(|l| l.forces.iter())
+            .map(|f| f.norm())
+            .fold(0.0, f64::max);
+        let t = loads
+            .iter()
+            .flat_map(|l| l.torques.iter())
+            .map(|f| f.norm())
+            .fold(0.0, f64::max);
+        (f, t)
+    }
+
+    fn paper_model() -> FineModel {
+        FineModel::from_strand(
+            &table1(),
+            Discretisation {
+                core_segments: 77,
+                wire_segments: 77,
+            },
+            Support::Clamped,
+            Support::Free,
+        )
+    }
+
+    /// Typical spring force of a wire joint: the helical wire's E A times a strain of 1e-3.
+    fn typical_force(m: &FineModel) -> (f64, f64) {
+        let s = m.wires[1].chain.section;
+        let f = s.youngs_modulus * s.area * 1e-3;
+        (f, f * m.wires[1].chain.segments[0].length)
+    }
+
+    #[test]
+    fn unloaded_strand_is_at_rest() {
+        let m = paper_model();
+        assert_eq!(m.wires.len(), 7);
+        let state = m.rest_state();
+        let mut loads = m.load_buffers();
+        m.compute_loads(&state, 1.0, &mut loads);
+        let (f, t) = max_loads(&loads);
+        let (f0, t0) = typical_force(&m);
+        println!(
+            "unloaded strand: max force {f:.2e} N ({:.2e} of {f0:.3} N), max torque {t:.2e} N m \
+             ({:.2e} of {t0:.2e} N m)",
+            f / f0,
+            t / t0
+        );
+        assert!(f <= 1e-12 * f0, "force {f} vs {f0}");
+        assert!(t <= 1e-12 * t0, "torque {t} vs {t0}");
+        let e = m.energies(&state, &mut loads);
+        assert!(e.spring.abs() < 1e-20, "{}", e.spring);
+    }
+
+    #[test]
+    fn rigid_motion_of_a_free_strand_is_load_free() {
+        let m = FineModel::from_strand(
+            &table1(),
+            Discretisation {
+                core_segments: 60,
+                wire_segments: 77,
+            },
+            Support::Free,
+            Support::Free,
+        );
+        let mut state = m.rest_state();
+        let g = UnitQuaternion::from_scaled_axis(Vector3::new(0.01, -0.02, 0.015));
+        let shift = Vector3::new(1e-3, -2e-3, 5e-4);
+        for w in &mut state.wires {
+            for p in &mut w.poses {
+                *p = Pose::new(g * p.position + shift, g * p.rotation);
+            }
+        }
+        let mut loads = m.load_buffers();
+        m.compute_loads(&state, 1.0, &mut loads);
+        let (f, t) = max_loads(&loads);
+        // Moving the poses rounds every coordinate (|x| <= 0.4 m) by about one ulp: the
+        // joint gaps then carry a few ulps of position, times the stiffest spring E A / l.
+        let k = m
+            .wires
+            .iter()
+            .flat_map(|w| w.chain.joints.iter())
+            .map(|j| j.stiffness.translational.max())
+            .fold(0.0, f64::max);
+        let ulp = f64::EPSILON * 0.4;
+        assert!(f <= 10.0 * ulp * k, "force {f} vs {}", ulp * k);
+        let l = m.wires[0].chain.segments[0].length;
+        assert!(t <= 10.0 * ulp * k * l, "torque {t} vs {}", ulp * k * l);
+        let e = m.energies(&state, &mut loads);
+        assert!(e.spring < 1e-20, "{}", e.spring);
+    }
+}

@@ -1,0 +1,319 @@
+//! Static equilibrium by Newton-Raphson with load stepping and a backtracking line search.
+//!
+//! The unknowns are the segment poses (6 per segment, see [`crate::tangent`]); the residual is
+//! the resultant force and torque on every segment. Gravity is applied in equal load steps;
+//! each step iterates until every segment's force is below `tolerance F_ref + F_round` and
+//! every torque below `(tolerance F_ref + F_round) l_ref`, where `F_ref` is the largest segment
+//! weight, `l_ref` the largest segment length and `F_round = 100 eps x_max k_max` the force
+//! that 100 ulps of the largest coordinate make on the stiffest joint spring (the round-off
+//! floor of the residual: joint gaps are differences of absolute positions). The tangent
+//! is the assembled element stiffness, factored by a sparse LU.
+
+use faer::linalg::solvers::SolveCore;
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Conj, Mat};
+use nalgebra::Vector3;
+
+use crate::model::{FineModel, ModelState, WireLoads};
+use crate::so3;
+
+/// Controls of the static solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StaticOptions {
+    /// Number of equal load steps from zero to full gravity.
+    pub load_steps: usize,
+    /// Tolerance on the scaled residual (-).
+    pub tolerance: f64,
+    /// Newton iterations allowed per load step.
+    pub max_iterations: usize,
+    /// Step halvings allowed in the line search.
+    pub max_backtracks: usize,
+}
+
+impl Default for StaticOptions {
+    fn default() -> Self {
+        Self {
+            load_steps: 5,
+            tolerance: 1e-9,
+            max_iterations: 40,
+            max_backtracks: 20,
+        }
+    }
+}
+
+/// Outcome of a converged static solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StaticReport {
+    /// Load steps taken.
+    pub load_steps: usize,
+    /// Newton iterations over all load steps.
+    pub iterations: usize,
+    /// Final scaled residual `max(|F| / F_ref, |T| / (F_ref l_ref))` (-).
+    pub residual: f64,
+    /// Round-off allowance added to `tolerance F_ref` in the convergence test (N).
+    pub roundoff: f64,
+    /// Force scale F_ref of the residual (N).
+    pub force_scale: f64,
+    /// Moment scale F_ref l_ref of the residual (N m).
+    pub moment_scale: f64,
+}
+
+/// Failure of the static solve.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum StaticError {
+    /// Newton did not reach the tolerance in the allowed iterations.
+    #[error("static solve did not converge at load step {step}: scaled residual {residual:.3e}")]
+    NotConverged {
+        /// Load step (1-based).
+        step: usize,
+        /// Scaled residual reached.
+        residual: f64,
+    },
+    /// The tangent could not be factored (e.g. an unsupported rigid-body mode).
+    #[error("singular tangent at load step {step}: {message}")]
+    Singular {
+        /// Load step (1-based).
+        step: usize,
+        /// Solver message.
+        message: String,
+    },
+    /// A residual became NaN or infinite.
+    #[error("non-finite residual at load step {step}")]
+    NonFinite {
+        /// Load step (1-based).
+        step: usize,
+    },
+}
+
+struct Scales {
+    force: f64,
+    moment: f64,
+    force_allowance: f64,
+    moment_allowance: f64,
+}
+
+/// Residual measures: (largest ratio to the allowance, 2-norm scaled by the reference
+/// loads, largest scaled load).
+fn residual_norms(loads: &[WireLoads], sc: &Scales) -> (f64, f64, f64) {
+    let mut ratio: f64 = 0.0;
+    let mut max: f64 = 0.0;
+    let mut sq = 0.0;
+    for l in loads {
+        for (f, t) in l.forces.iter().zip(&l.torques) {
+            let (f, t) = (f.norm(), t.norm());
+            ratio = ratio
+                .max(f / sc.force_allowance)
+                .max(t / sc.moment_allowance);
+            let (rf, rt) = (f / sc.force, t / sc.moment);
+            max = max.max(rf).max(rt);
+            sq += rf * rf + rt * rt;
+        }
+    }
+    if !sq.is_finite() {
+        return (f64::NAN, f64::NAN, f64::NAN);
+    }
+    (ratio, sq.sqrt(), max)
+}
+
+/// Total potential: spring energy plus the potential of the (scaled) gravity (J).
+fn potential(loads: &[WireLoads]) -> f64 {
+    loads
+        .iter()
+        .map(|l| l.spring_energy + l.gravity_energy)
+        .sum()
+}
+
+/// Virtual work of the loads on the increment `delta` (J).
+fn dot_loads(loads: &[WireLoads], delta: &[f64]) -> f64 {
+    let mut w = 0.0;
+    let mut s = 0;
+    for l in loads {
+        for (f, t) in l.forces.iter().zip(&l.torques) {
+            for i in 0..3 {
+                w += f[i] * delta[6 * s + i] + t[i] * delta[6 * s + 3 + i];
+            }
+            s += 1;
+        }
+    }
+    w
+}
+
+fn apply_step(base: &ModelState, delta: &[f64], alpha: f64, out: &mut ModelState) {
+    let mut s = 0;
+    for (wb, wo) in base.wires.iter().zip(out.wires.iter_mut()) {
+        for (pb, po) in wb.poses.iter().zip(wo.poses.iter_mut()) {
+            let d = &delta[6 * s..6 * s + 6];
+            po.position = pb.position + alpha * Vector3::new(d[0], d[1], d[2]);
+            let mut q = so3::exp(&(alpha * Vector3::new(d[3], d[4], d[5]))) * pb.rotation;
+            q.renormalize();
+            po.rotation = q;
+            s += 1;
+        }
+    }
+}
+
+/// Solves for static equilibrium under the model's gravity, starting from `state` (poses
+/// only; velocities are left untouched) and leaving the equilibrium in `state`.
+pub fn solve_static(
+    model: &FineModel,
+    state: &mut ModelState,
+    options: &StaticOptions,
+) -> Result<StaticReport, StaticError> {
+    faer::set_global_parallelism(faer::Par::Seq);
+    let n_seg = model.segment_count();
+    let n = 6 * n_seg;
+    let segs = model.wires.iter().flat_map(|w| w.chain.segments.iter());
+    let g = model.gravity.norm();
+    let weight = segs.clone().map(|s| s.mass * g).fold(0.0, f64::max);
+    let l_ref = segs.map(|s| s.length).fold(0.0, f64::max);
+    let force = if weight > 0.0 {
+        weight
+    } else {
+        // No load: scale by a small force of the stiffest wire.
+        model
+            .wires
+            .iter()
+            .map(|w| w.chain.section.youngs_modulus * w.chain.section.area * 1e-9)
+            .fold(0.0, f64::max)
+    };
+    // Round-off allowance: 100 ulps of the largest coordinate on the stiffest spring.
+    let x_max = model
+        .wires
+        .iter()
+        .flat_map(|w| w.chain.rest.iter())
+        .map(|p| p.position.amax())
+        .fold(0.0, f64::max)
+        + l_ref;
+    let k_max = model
+        .wires
+        .iter()
+        .flat_map(|w| {
+            w.chain
+                .joints
+                .iter()
+                .chain(w.anchors.iter().map(|a| &a.joint))
+        })
+        .map(|j| j.stiffness.translational.max())
+        .fold(0.0, f64::max);
+    let roundoff = 100.0 * f64::EPSILON * x_max * k_max;
+    let sc = Scales {
+        force,
+        moment: force * l_ref,
+        force_allowance: options.tolerance * force + roundoff,
+        moment_allowance: (options.tolerance * force + roundoff) * l_ref,
+    };
+    let mut loads = model.load_buffers();
+    let mut trial = state.clone();
+    let mut rhs = Mat::<f64>::zeros(n, 1);
+    let mut delta = vec![0.0; n];
+    let mut triplets = Vec::new();
+    let mut iterations = 0;
+    let mut residual = 0.0;
+    for step in 1..=options.load_steps.max(1) {
+        let lambda = step as f64 / options.load_steps.max(1) as f64;
+        model.compute_loads(state, lambda, &mut loads);
+        let (mut rmax, mut r2, mut rel) = residual_norms(&loads, &sc);
+        let mut it = 0;
+        while rmax.is_nan() || rmax > 1.0 {
+            if rmax.is_nan() {
+                return Err(StaticError::NonFinite { step });
+            }
+            if it == options.max_iterations {
+                return Err(StaticError::NotConverged {
+                    step,
+                    residual: rel,
+                });
+            }
+            it += 1;
+            // Right-hand side: the residual loads (K delta = r).
+            let mut s = 0;
+            for l in &loads {
+                for (f, t) in l.forces.iter().zip(&l.torques) {
+                    for i in 0..3 {
+                        rhs[(6 * s + i, 0)] = f[i];
+                        rhs[(6 * s + 3 + i, 0)] = t[i];
+                    }
+                    s += 1;
+                }
+            }
+            triplets.clear();
+            for e in model.element_tangents(state) {
+                for (bi, si) in e.segments.iter().enumerate() {
+                    let Some(si) = si else { continue };
+                    for (bj, sj) in e.segments.iter().enumerate() {
+                        let Some(sj) = sj else { continue };
+                        for r in 0..6 {
+                            for c in 0..6 {
+                                let v = e.stiffness[(6 * bi + r, 6 * bj + c)];
+                                if v != 0.0 {
+                                    triplets.push(Triplet::new(6 * si + r, 6 * sj + c, v));
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            let k = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &triplets).map_err(
+                |e| StaticError::Singular {
+                    step,
+                    message: format!("{e:?}"),
+                },
+            )?;
+            let lu = k.sp_lu().map_err(|e| StaticError::Singular {
+                step,
+                message: format!("{e:?}"),
+            })?;
+            lu.solve_in_place_with_conj(Conj::No, rhs.as_mut());
+            for i in 0..n {
+                delta[i] = rhs[(i, 0)];
+            }
+            if delta.iter().any(|d| !d.is_finite()) {
+                return Err(StaticError::Singular {
+                    step,
+                    message: "non-finite Newton increment".into(),
+                });
+            }
+            // Backtracking line search: accept a step that lowers the total potential
+            // (Armijo) or the scaled residual. The potential is the merit function far from
+            // equilibrium: the residual of stiff axial springs grows with the second-order
+            // gaps of a rotation step even when the step is good.
+            let potential0 = potential(&loads);
+            let slope: f64 = -dot_loads(&loads, &delta);
+            let mut alpha = 1.0;
+            let mut accepted = false;
+            for _ in 0..=options.max_backtracks {
+                apply_step(state, &delta, alpha, &mut trial);
+                model.compute_loads(&trial, lambda, &mut loads);
+                let (tmax, t2, trel) = residual_norms(&loads, &sc);
+                let armijo = potential(&loads) <= potential0 + 1e-4 * alpha * slope;
+                if armijo || t2 < (1.0 - 1e-4 * alpha) * r2 || tmax <= 1.0 {
+                    rmax = tmax;
+                    rel = trel;
+                    r2 = t2;
+                    accepted = true;
+                    break;
+                }
+                alpha *= 0.5;
+            }
+            if !accepted {
+                // Take the full step: near round-off the residual no longer decreases.
+                apply_step(state, &delta, 1.0, &mut trial);
+                model.compute_loads(&trial, lambda, &mut loads);
+                (rmax, r2, rel) = residual_norms(&loads, &sc);
+            }
+            for (ws, wt) in state.wires.iter_mut().zip(&trial.wires) {
+                ws.poses.copy_from_slice(&wt.poses);
+            }
+        }
+        iterations += it;
+        residual = rel;
+    }
+    Ok(StaticReport {
+        load_steps: options.load_steps.max(1),
+        iterations,
+        residual,
+        roundoff,
+        force_scale: sc.force,
+        moment_scale: sc.moment,
+    })
+}
