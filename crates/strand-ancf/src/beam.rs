@@ -1,0 +1,544 @@
+//! The equivalent strand beam: a mesh of planar cable elements carrying a section law, with
+//! supports eliminated, its constant mass matrix (eq. (44)), gravity load (eq. (45)) and the
+//! assembly of the generalized elastic forces (eq. (28)) and their analytic tangent.
+//!
+//! # Quadrature
+//!
+//! * Axial term: 2 Gauss points per element (reduced). A cubic cable element cannot bend into
+//!   an arc without stretching; fully integrated, that parasitic strain stiffens thin strands
+//!   (membrane locking: EA l^2 / EI is of order 10^3-10^7 here). With 3 points the tip error
+//!   of the q L^3/EI = 5 elastica at 16 elements and EA L^2/EI = 1e7 is 3.9e-4 L (order 2.5);
+//!   with 2 points it is 1.2e-6 L (order 3.5) (`tests/statics.rs`). The strain used by the
+//!   section law for the wire tension is the assumed field `eps_bar`, linear through the two
+//!   axial points, so the friction limits see the strand's tension, not the parasitic strain.
+//! * Bending term: the wire phases turn once per pitch P, and each wire switches between stick
+//!   and slip inside an element longer than P/2, so the default rule is composite: 3 Gauss points
+//!   on each of `ceil(4 l / P)` equal sub-intervals (a sub-interval spans at most a quarter
+//!   pitch). Laws without wires use 4 Gauss points. A scene can ask for n Gauss points instead.
+
+use nalgebra::{Vector2, Vector4};
+use strand_core::{SectionLaw, Station};
+
+use crate::band::BandMatrix;
+use crate::error::AncfError;
+use crate::load::planar_gravity;
+use crate::mass::planar_mass;
+use crate::planar::{self, PlanarCoords, PlanarMatrix, PlanarPoint, PlanarSection, PlanarVector};
+use crate::shape::{QuadraturePoint, ShapeRow, element_quadrature, gauss_legendre};
+
+/// How an end of the beam is held.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Support {
+    /// Position and slope fixed.
+    Clamped,
+    /// Position fixed.
+    Pinned,
+}
+
+/// What a beam is built from (besides its section law).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BeamSpec {
+    /// Number of elements.
+    pub elements: usize,
+    /// Gauss points per element for the bending term; `None` for the pitch rule.
+    pub bending_points: Option<usize>,
+    /// Mass per length (kg/m).
+    pub mass_per_length: f64,
+    /// Unit direction of the straight initial strand in the XY plane.
+    pub direction: [f64; 2],
+    /// Gravitational acceleration in the XY plane (m/s^2).
+    pub gravity: [f64; 2],
+    /// Support at x = 0.
+    pub start: Option<Support>,
+    /// Support at x = L.
+    pub end: Option<Support>,
+}
+
+/// Errors of building or evaluating a beam.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BeamError {
+    /// Kinematics failed in an element.
+    #[error("element {element}: {source}")]
+    Kinematics {
+        /// 0-based element index.
+        element: usize,
+        /// What failed.
+        source: AncfError,
+    },
+    /// A non-finite value appeared.
+    #[error("non-finite {quantity} in element {element} at x = {x} m")]
+    NonFinite {
+        /// 0-based element index.
+        element: usize,
+        /// Material coordinate (m).
+        x: f64,
+        /// Which quantity.
+        quantity: &'static str,
+    },
+    /// Invalid set-up.
+    #[error("{0}")]
+    Setup(String),
+}
+
+/// One bending integration point.
+#[derive(Debug, Clone)]
+pub(crate) struct BendPoint {
+    pub qp: QuadraturePoint,
+    pub station: Station,
+    /// Lagrange weights of the axial points at this point (assumed strain).
+    pub interp: [f64; AXIAL_POINTS],
+}
+
+/// Quadrature of one element (all elements have the same length but different stations).
+#[derive(Debug, Clone)]
+pub(crate) struct ElementRule {
+    pub axial: Vec<QuadraturePoint>,
+    pub bend: Vec<BendPoint>,
+}
+
+/// State of the section at one bending point after an evaluation (for output and the
+/// energy bookkeeping).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PointState {
+    /// Material coordinate (m).
+    pub x: f64,
+    /// Assumed axial strain.
+    pub eps: f64,
+    /// Signed curvature (1/m).
+    pub kappa: f64,
+    /// Bending moment (N m).
+    pub moment: f64,
+    /// d(stored energy)/d eps at fixed curvature (J/m), see `SectionResponse::energy_strain`.
+    pub energy_strain: f64,
+    /// Quadrature weight (m).
+    pub weight: f64,
+    /// Number of slipping wires.
+    pub slipping: usize,
+}
+
+/// Sums of an evaluation of the internal forces.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Evaluation {
+    /// Stored elastic energy (J).
+    pub energy: f64,
+    /// Work dissipated by slip from the committed state (J; hysteretic law).
+    pub slip_work: f64,
+    /// Slipping wire-points.
+    pub slipping: usize,
+}
+
+/// A discretized planar strand beam.
+#[derive(Debug, Clone)]
+pub struct Beam {
+    spec: BeamSpec,
+    law: SectionLaw,
+    length: f64,
+    element_length: f64,
+    /// Free-coordinate index of each global coordinate.
+    free_index: Vec<Option<usize>>,
+    n_free: usize,
+    rules: Vec<ElementRule>,
+    q_ref: Vec<f64>,
+    gravity_force: Vec<f64>,
+    mass: BandMatrix,
+    wires: usize,
+}
+
+/// Coordinates per node of the planar element: (r_x, r_y, r'_x, r'_y).
+pub const NODE_COORDS: usize = 4;
+
+/// Gauss points of the reduced axial quadrature.
+pub const AXIAL_POINTS: usize = 2;
+
+impl Beam {
+    /// Builds the beam of `spec` with section law `law` (its strand gives the length).
+    pub fn new(spec: BeamSpec, law: SectionLaw) -> Result<Beam, BeamError> {
+        let n = spec.elements;
+        if n == 0 {
+            return Err(BeamError::Setup("a beam needs at least one element".into()));
+        }
+        let length = law.strand().length();
+        let l = length / n as f64;
+        let nd = NODE_COORDS;
+        let n_glob = (n + 1) * nd;
+        let d = Vector2::from(spec.direction);
+        if (d.norm() - 1.0).abs() > 1e-12 {
+            return Err(BeamError::Setup("direction must be a unit vector".into()));
+        }
+        let mut q_ref = vec![0.0; n_glob];
+        for j in 0..=n {
+            let x = j as f64 * l;
+            q_ref[j * nd..j * nd + 4].copy_from_slice(&[x * d.x, x * d.y, d.x, d.y]);
+        }
+        let mut fixed = vec![false; n_glob];
+        for (node, s) in [(0, spec.start), (n, spec.end)] {
+            let count = match s {
+                None => 0,
+                Some(Support::Pinned) => 2,
+                Some(Support::Clamped) => 4,
+            };
+            for k in 0..count {
+                fixed[node * nd + k] = true;
+            }
+        }
+        let mut free_index = vec![None; n_glob];
+        let mut n_free = 0;
+        for (g, f) in fixed.iter().enumerate() {
+            if !f {
+                free_index[g] = Some(n_free);
+                n_free += 1;
+            }
+        }
+        let wires = law.sliders();
+        let rules = (0..n)
+            .map(|e| element_rule(&law, &spec, e, l))
+            .collect::<Result<Vec<_>, _>>()?;
+
+        // Mass (free block) and gravity.
+        let band = 2 * nd - 1;
+        let mut mass = BandMatrix::zeros(n_free, band, band);
+        let me = planar_mass(spec.mass_per_length, l);
+        let g = Vector2::from(spec.gravity);
+        let fe = planar_gravity(spec.mass_per_length, &g, l);
+        let mut gravity_force = vec![0.0; n_glob];
+        for e in 0..n {
+            for a in 0..2 * nd {
+                let ga = e * nd + a;
+                gravity_force[ga] += fe[a];
+                let Some(ia) = free_index[ga] else { continue };
+                for b in 0..2 * nd {
+                    if let Some(ib) = free_index[e * nd + b] {
+                        mass.add(ia, ib, me[(a, b)]);
+                    }
+                }
+            }
+        }
+        Ok(Beam {
+            spec,
+            law,
+            length,
+            element_length: l,
+            free_index,
+            n_free,
+            rules,
+            q_ref,
+            gravity_force,
+            mass,
+            wires,
+        })
+    }
+
+    /// The spec the beam was built from.
+    pub fn spec(&self) -> &BeamSpec {
+        &self.spec
+    }
+    /// The section law.
+    pub fn law(&self) -> &SectionLaw {
+        &self.law
+    }
+    /// Strand length (m).
+    pub fn length(&self) -> f64 {
+        self.length
+    }
+    /// Element length (m).
+    pub fn element_length(&self) -> f64 {
+        self.element_length
+    }
+    /// Number of global coordinates.
+    pub fn coords(&self) -> usize {
+        self.q_ref.len()
+    }
+    /// Number of free coordinates (degrees of freedom).
+    pub fn dofs(&self) -> usize {
+        self.n_free
+    }
+    /// Free index of global coordinate `g`, if free.
+    pub fn free_index(&self, g: usize) -> Option<usize> {
+        self.free_index[g]
+    }
+    /// The straight reference configuration.
+    pub fn reference(&self) -> &[f64] {
+        &self.q_ref
+    }
+    /// Generalized gravity force, all coordinates (N).
+    pub fn gravity_force(&self) -> &[f64] {
+        &self.gravity_force
+    }
+    /// Mass matrix of the free coordinates (kg).
+    pub fn mass(&self) -> &BandMatrix {
+        &self.mass
+    }
+    /// Half-bandwidth of the free system.
+    pub fn bandwidth(&self) -> usize {
+        2 * NODE_COORDS - 1
+    }
+    /// Bending points per element.
+    pub fn bending_points(&self) -> usize {
+        self.rules[0].bend.len()
+    }
+    /// Total bending points.
+    pub fn points(&self) -> usize {
+        self.rules.iter().map(|r| r.bend.len()).sum()
+    }
+    /// Length of the law's state vector for the whole beam.
+    pub fn state_len(&self) -> usize {
+        if self.law.kind().has_state() {
+            self.points() * self.wires
+        } else {
+            0
+        }
+    }
+
+    /// Coordinates of element `e` from the global vector.
+    pub fn element_coords(&self, q: &[f64], e: usize) -> PlanarCoords {
+        PlanarCoords::from_column_slice(&q[e * NODE_COORDS..e * NODE_COORDS + 2 * NODE_COORDS])
+    }
+
+    /// Position and slope at material coordinate `x` (m).
+    pub fn sample(&self, q: &[f64], x: f64) -> (Vector2<f64>, Vector2<f64>) {
+        let e = ((x / self.element_length) as usize).min(self.spec.elements - 1);
+        let row = ShapeRow::new(x - e as f64 * self.element_length, self.element_length);
+        let qe = self.element_coords(q, e);
+        let p = PlanarPoint::at(&qe, &row);
+        (planar::position(&qe, &row), p.dr)
+    }
+
+    /// Evaluates the generalized elastic forces `Q_e` (eq. (28)) into `force` (all
+    /// coordinates, overwritten) and, if given, the tangent `dQ_e/dq` of the free coordinates
+    /// into `tangent` (overwritten). `slip`/`trial` are the law's committed and trial state
+    /// ([`Self::state_len`]); `points`, if given, receives the state at every bending point.
+    pub fn internal(
+        &self,
+        q: &[f64],
+        slip: &[f64],
+        trial: &mut [f64],
+        force: &mut [f64],
+        mut tangent: Option<&mut BandMatrix>,
+        mut points: Option<&mut [PointState]>,
+    ) -> Result<Evaluation, BeamError> {
+        force.fill(0.0);
+        if let Some(t) = tangent.as_deref_mut() {
+            t.fill_zero();
+        }
+        let nd = NODE_COORDS;
+        let ws = if self.law.kind().has_state() {
+            self.wires
+        } else {
+            0
+        };
+        let mut sum = Evaluation::default();
+        let mut k_e = PlanarMatrix::zeros();
+        let mut p0 = 0;
+        for (e, rule) in self.rules.iter().enumerate() {
+            let qe = self.element_coords(q, e);
+            let np = rule.bend.len();
+            let (s0, s1) = (p0 * ws, (p0 + np) * ws);
+            let tl = trial.len();
+            let pts = points.as_deref_mut().map(|p| &mut p[p0..p0 + np]);
+            let (f_e, ev) = self.element(
+                e,
+                rule,
+                &qe,
+                &slip[s0.min(slip.len())..s1.min(slip.len())],
+                &mut trial[s0.min(tl)..s1.min(tl)],
+                tangent.is_some().then_some(&mut k_e),
+                pts,
+            )?;
+            p0 += np;
+            sum.energy += ev.energy;
+            sum.slip_work += ev.slip_work;
+            sum.slipping += ev.slipping;
+            for a in 0..2 * nd {
+                force[e * nd + a] += f_e[a];
+            }
+            if let Some(t) = tangent.as_deref_mut() {
+                for a in 0..2 * nd {
+                    let Some(ia) = self.free_index[e * nd + a] else {
+                        continue;
+                    };
+                    for b in 0..2 * nd {
+                        if let Some(ib) = self.free_index[e * nd + b] {
+                            t.add(ia, ib, k_e[(a, b)]);
+                        }
+                    }
+                }
+            }
+        }
+        Ok(sum)
+    }
+
+    /// Forces (and tangent) of one element.
+    #[allow(clippy::too_many_arguments)]
+    fn element(
+        &self,
+        e: usize,
+        rule: &ElementRule,
+        qe: &PlanarCoords,
+        slip: &[f64],
+        trial: &mut [f64],
+        mut tangent: Option<&mut PlanarMatrix>,
+        mut points: Option<&mut [PointState]>,
+    ) -> Result<(PlanarVector, Evaluation), BeamError> {
+        let kin = |source| BeamError::Kinematics { element: e, source };
+        let ea = self.law.axial_stiffness();
+        let mut f = PlanarVector::zeros();
+        if let Some(t) = tangent.as_deref_mut() {
+            t.fill(0.0);
+        }
+        let mut ev = Evaluation::default();
+        // Axial points: reduced quadrature.
+        let mut eps_a = [0.0; AXIAL_POINTS];
+        let mut eps_q = [PlanarVector::zeros(); AXIAL_POINTS];
+        for (j, ap) in rule.axial.iter().enumerate() {
+            let pt = PlanarPoint::at(qe, &ap.row);
+            let sec = |eps: f64| PlanarSection {
+                n: ea * eps,
+                dn_deps: ea,
+                ..Default::default()
+            };
+            if let Some(t) = tangent.as_deref_mut() {
+                let s2 = pt.second().map_err(kin)?;
+                let s = sec(s2.first.eps);
+                eps_a[j] = s2.first.eps;
+                planar::add_gradient(&mut f, ap.weight, &ap.row, &s2.force(&s));
+                planar::add_hessian(t, ap.weight, &ap.row, &s2.tangent(&s));
+                eps_q[j] = planar::scatter_gradient(&ap.row, &s2.first.eps_grad);
+            } else {
+                let s1 = pt.first().map_err(kin)?;
+                eps_a[j] = s1.eps;
+                planar::add_gradient(&mut f, ap.weight, &ap.row, &s1.force(&sec(s1.eps)));
+            }
+            ev.energy += ap.weight * 0.5 * ea * eps_a[j] * eps_a[j];
+        }
+        // Bending points.
+        let ws = if self.law.kind().has_state() {
+            self.wires
+        } else {
+            0
+        };
+        for (i, bp) in rule.bend.iter().enumerate() {
+            let eps: f64 = (0..AXIAL_POINTS).map(|j| bp.interp[j] * eps_a[j]).sum();
+            let pt = PlanarPoint::at(qe, &bp.qp.row);
+            let (sl, tr) = if ws > 0 {
+                (
+                    &slip[i * ws..(i + 1) * ws],
+                    &mut trial[i * ws..(i + 1) * ws],
+                )
+            } else {
+                (&slip[..0], &mut trial[..0])
+            };
+            let w = bp.qp.weight;
+            let kappa;
+            let r;
+            if let Some(t) = tangent.as_deref_mut() {
+                let s2 = pt.second().map_err(kin)?;
+                kappa = s2.first.kappa;
+                r = self.law.planar(&bp.station, eps, kappa, sl, tr);
+                let sec = PlanarSection {
+                    m: r.moment,
+                    dm_dkappa: r.moment_curvature,
+                    ..Default::default()
+                };
+                planar::add_gradient(&mut f, w, &bp.qp.row, &s2.force(&sec));
+                planar::add_hessian(t, w, &bp.qp.row, &s2.tangent(&sec));
+                if r.moment_strain != 0.0 {
+                    // d M / d eps_bar couples the curvature here to the axial points.
+                    let gk = planar::scatter_gradient(&bp.qp.row, &s2.first.kappa_grad);
+                    let mut ge = PlanarVector::zeros();
+                    for j in 0..AXIAL_POINTS {
+                        ge += eps_q[j] * bp.interp[j];
+                    }
+                    t.ger(w * r.moment_strain, &gk, &ge, 1.0);
+                }
+            } else {
+                let s1 = pt.first().map_err(kin)?;
+                kappa = s1.kappa;
+                r = self.law.planar(&bp.station, eps, kappa, sl, tr);
+                let local: Vector4<f64> = s1.kappa_grad * r.moment;
+                planar::add_gradient(&mut f, w, &bp.qp.row, &local);
+            }
+            if !(r.moment.is_finite() && r.moment_curvature.is_finite()) {
+                return Err(BeamError::NonFinite {
+                    element: e,
+                    x: bp.station.x,
+                    quantity: "bending moment",
+                });
+            }
+            ev.energy += w * (r.energy - 0.5 * ea * eps * eps);
+            ev.slip_work += w * r.slip_work;
+            ev.slipping += r.slipping;
+            if let Some(p) = points.as_deref_mut() {
+                p[i] = PointState {
+                    x: bp.station.x,
+                    eps,
+                    kappa,
+                    moment: r.moment,
+                    energy_strain: r.energy_strain,
+                    weight: w,
+                    slipping: r.slipping,
+                };
+            }
+        }
+        if !f.iter().all(|v| v.is_finite()) {
+            return Err(BeamError::NonFinite {
+                element: e,
+                x: (e as f64 + 0.5) * self.element_length,
+                quantity: "elastic force",
+            });
+        }
+        Ok((f, ev))
+    }
+}
+
+/// Bending integration points of element `e`: the pitch rule or the scene's Gauss rule.
+fn element_rule(
+    law: &SectionLaw,
+    spec: &BeamSpec,
+    e: usize,
+    l: f64,
+) -> Result<ElementRule, BeamError> {
+    let setup = |source| BeamError::Kinematics { element: e, source };
+    let axial = element_quadrature(l, AXIAL_POINTS).map_err(setup)?;
+    let x0 = e as f64 * l;
+    let mut pts: Vec<(f64, f64)> = Vec::new();
+    match (spec.bending_points, law.strand().layer()) {
+        (Some(n), _) => {
+            let rule = gauss_legendre(n).map_err(setup)?;
+            pts.extend(rule.on_interval(0.0, l));
+        }
+        (None, Some(layer)) if law.sliders() > 0 => {
+            let sub = ((4.0 * l / layer.pitch).ceil() as usize).max(1);
+            let rule = gauss_legendre(3).map_err(setup)?;
+            let h = l / sub as f64;
+            for k in 0..sub {
+                pts.extend(rule.on_interval(k as f64 * h, (k + 1) as f64 * h));
+            }
+        }
+        _ => {
+            let rule = gauss_legendre(4).map_err(setup)?;
+            pts.extend(rule.on_interval(0.0, l));
+        }
+    }
+    let xa: Vec<f64> = axial.iter().map(|a| a.row.x).collect();
+    let bend = pts
+        .into_iter()
+        .map(|(x, weight)| {
+            // Lagrange polynomial through the axial points.
+            let interp = std::array::from_fn(|j| {
+                (0..AXIAL_POINTS)
+                    .filter(|&k| k != j)
+                    .map(|k| (x - xa[k]) / (xa[j] - xa[k]))
+                    .product()
+            });
+            BendPoint {
+                qp: QuadraturePoint {
+                    weight,
+                    row: ShapeRow::new(x, l),
+                },
+                station: law.station(x0 + x),
+                interp,
+            }
+        })
+        .collect();
+    Ok(ElementRule { axial, bend })
+}

@@ -1,0 +1,280 @@
+//! Planar cable element: 2 nodes with `(r_x, r_y, r'_x, r'_y)` each, 8 coordinates
+//! `q = (r(0), r'(0), r(l), r'(l))` (eqs. (24)-(26) restricted to the XY plane).
+//!
+//! At a point the element gives `r' = S' q`, `r'' = S'' q` ([`PlanarPoint`]); from them
+//!
+//! ```text
+//! eps   = |r'| - 1                                  axial strain (SPEC 3)
+//! kappa = (r' x r'')_z / |r'|^3                     signed curvature, kappa_z of the section
+//! ```
+//!
+//! with analytic first and second derivatives with respect to the local variables
+//! `y = (r'_x, r'_y, r''_x, r''_y)` ([`PlanarFirst`], [`PlanarSecond`]). Element-size
+//! derivatives (8-vectors, 8x8 matrices) follow from [`scatter_gradient`] and
+//! [`scatter_hessian`], or their accumulating forms [`add_gradient`] and [`add_hessian`]: an
+//! element combines the local derivatives of all section quantities at a Gauss point first
+//! (4 values, 4x4) and maps them to `q` once.
+//!
+//! The signed curvature is a polynomial in `(r', r'')` divided by `|r'|^3`: it is smooth
+//! through the straight state (`r' x r'' = 0`), and the only division is by `|r'|`, which must
+//! be positive: below [`MIN_STRETCH`](crate::MIN_STRETCH) the evaluation returns
+//! [`AncfError::DegenerateTangent`].
+
+use nalgebra::{Matrix2, Matrix4, SMatrix, SVector, Vector2, Vector4};
+
+use crate::error::{AncfError, check_stretch};
+use crate::scatter;
+use crate::shape::ShapeRow;
+
+/// Element coordinates of the planar element (8).
+pub type PlanarCoords = SVector<f64, 8>;
+/// Element-size gradient (8).
+pub type PlanarVector = SVector<f64, 8>;
+/// Element-size matrix (8x8).
+pub type PlanarMatrix = SMatrix<f64, 8, 8>;
+
+/// Position `r(x) = S(x) q` (eq. (26)).
+#[inline]
+pub fn position(q: &PlanarCoords, row: &ShapeRow) -> Vector2<f64> {
+    Vector2::from(scatter::combine::<2>(&row.s, q.as_slice()))
+}
+
+/// Local kinematic variables at one point: `r'` and `r''`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanarPoint {
+    /// Position gradient `r' = dr/dx`.
+    pub dr: Vector2<f64>,
+    /// Second derivative `r'' = d^2 r/dx^2`.
+    pub ddr: Vector2<f64>,
+}
+
+/// Strain, curvature and their gradients with respect to `y = (r', r'')`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanarFirst {
+    /// Axial strain `eps = |r'| - 1`.
+    pub eps: f64,
+    /// Signed curvature `kappa = (r' x r'')_z / |r'|^3` (1/m); the section's `kappa_z`.
+    pub kappa: f64,
+    /// Unit tangent `t = r' / |r'|`.
+    pub tangent: Vector2<f64>,
+    /// `d eps / dy` (the last two entries are zero).
+    pub eps_grad: Vector4<f64>,
+    /// `d kappa / dy`.
+    pub kappa_grad: Vector4<f64>,
+}
+
+/// [`PlanarFirst`] plus the Hessians with respect to `y = (r', r'')`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanarSecond {
+    /// Values and gradients.
+    pub first: PlanarFirst,
+    /// `d^2 eps / dy^2`: only the `r'` block `(I - t t^T) / |r'|` is non-zero.
+    pub eps_hess: Matrix4<f64>,
+    /// `d^2 kappa / dy^2`: the `r''` block is zero (kappa is linear in `r''`).
+    pub kappa_hess: Matrix4<f64>,
+}
+
+/// Intermediate quantities shared by the evaluations.
+struct Core {
+    n: f64,
+    t: Vector2<f64>,
+    /// `1 / |r'|^3`.
+    g: f64,
+    /// `(r' x r'')_z`.
+    c: f64,
+    /// `d c / d r'` = `(r''_y, -r''_x)`.
+    c_a: Vector2<f64>,
+    /// `d c / d r''` = `(-r'_y, r'_x)`.
+    c_b: Vector2<f64>,
+    /// `d g / d r'` = `-3 r' / |r'|^5`.
+    g_a: Vector2<f64>,
+}
+
+impl PlanarPoint {
+    /// Local variables from raw vectors.
+    #[inline]
+    pub fn new(dr: Vector2<f64>, ddr: Vector2<f64>) -> Self {
+        Self { dr, ddr }
+    }
+
+    /// `r'` and `r''` of the element with coordinates `q` at the point of `row`.
+    #[inline]
+    pub fn at(q: &PlanarCoords, row: &ShapeRow) -> Self {
+        Self {
+            dr: Vector2::from(scatter::combine::<2>(&row.ds, q.as_slice())),
+            ddr: Vector2::from(scatter::combine::<2>(&row.dds, q.as_slice())),
+        }
+    }
+
+    /// `|r'|`, checked against [`MIN_STRETCH`](crate::MIN_STRETCH).
+    #[inline]
+    fn stretch(&self) -> Result<f64, AncfError> {
+        check_stretch(self.dr.norm())
+    }
+
+    /// Axial strain `eps = |r'| - 1`.
+    #[inline]
+    pub fn strain(&self) -> Result<f64, AncfError> {
+        Ok(self.stretch()? - 1.0)
+    }
+
+    /// Signed curvature `(r' x r'')_z / |r'|^3`.
+    #[inline]
+    pub fn curvature(&self) -> Result<f64, AncfError> {
+        let n = self.stretch()?;
+        Ok(cross(&self.dr, &self.ddr) / (n * n * n))
+    }
+
+    #[inline]
+    fn core(&self) -> Result<Core, AncfError> {
+        let n = self.stretch()?;
+        let (a, b) = (&self.dr, &self.ddr);
+        let t = a / n;
+        let g = 1.0 / (n * n * n);
+        Ok(Core {
+            n,
+            t,
+            g,
+            c: cross(a, b),
+            c_a: Vector2::new(b.y, -b.x),
+            c_b: Vector2::new(-a.y, a.x),
+            g_a: t * (-3.0 * g / n),
+        })
+    }
+
+    /// Strain, curvature and their gradients with respect to `(r', r'')`.
+    #[inline]
+    pub fn first(&self) -> Result<PlanarFirst, AncfError> {
+        let k = self.core()?;
+        Ok(first_from(&k))
+    }
+
+    /// Strain, curvature, gradients and Hessians with respect to `(r', r'')`.
+    pub fn second(&self) -> Result<PlanarSecond, AncfError> {
+        let k = self.core()?;
+        let first = first_from(&k);
+        let (n, t, g, c) = (k.n, k.t, k.g, k.c);
+
+        let mut eps_hess = Matrix4::zeros();
+        let p = (Matrix2::identity() - t * t.transpose()) / n;
+        eps_hess.fixed_view_mut::<2, 2>(0, 0).copy_from(&p);
+
+        // g_aa = -3 I / n^5 + 15 a a^T / n^7 = (g / n^2) (15 t t^T - 3 I).
+        let g_aa = (t * t.transpose() * 15.0 - Matrix2::identity() * 3.0) * (g / (n * n));
+        let k_aa = k.c_a * k.g_a.transpose() + k.g_a * k.c_a.transpose() + g_aa * c;
+        // d^2 c / da db = [[0, 1], [-1, 0]] (rows r', columns r'').
+        let c_ab = Matrix2::new(0.0, 1.0, -1.0, 0.0);
+        let k_ab = c_ab * g + k.g_a * k.c_b.transpose();
+        let mut kappa_hess = Matrix4::zeros();
+        kappa_hess.fixed_view_mut::<2, 2>(0, 0).copy_from(&k_aa);
+        kappa_hess.fixed_view_mut::<2, 2>(0, 2).copy_from(&k_ab);
+        kappa_hess
+            .fixed_view_mut::<2, 2>(2, 0)
+            .copy_from(&k_ab.transpose());
+        Ok(PlanarSecond {
+            first,
+            eps_hess,
+            kappa_hess,
+        })
+    }
+}
+
+#[inline]
+fn first_from(k: &Core) -> PlanarFirst {
+    let ka = k.c_a * k.g + k.g_a * k.c;
+    let kb = k.c_b * k.g;
+    PlanarFirst {
+        eps: k.n - 1.0,
+        kappa: k.c * k.g,
+        tangent: k.t,
+        eps_grad: Vector4::new(k.t.x, k.t.y, 0.0, 0.0),
+        kappa_grad: Vector4::new(ka.x, ka.y, kb.x, kb.y),
+    }
+}
+
+/// `(a x b)_z`.
+#[inline]
+fn cross(a: &Vector2<f64>, b: &Vector2<f64>) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+/// Section resultants at a point and their tangents, as a section law returns them
+/// (planar: `strand_core::PlanarResponse`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PlanarSection {
+    /// Axial force `N` (N).
+    pub n: f64,
+    /// `dN/deps` (N).
+    pub dn_deps: f64,
+    /// Bending moment `M` conjugate to the signed curvature (N m).
+    pub m: f64,
+    /// `dM/dkappa` (N m^2).
+    pub dm_dkappa: f64,
+    /// `dM/deps` (N m); makes the tangent non-symmetric.
+    pub dm_deps: f64,
+}
+
+impl PlanarFirst {
+    /// Local generalized force `N d eps/dy + M d kappa/dy` (the integrand of eq. (28) in the
+    /// variables `y = (r', r'')`); map with [`add_gradient`].
+    #[inline]
+    pub fn force(&self, s: &PlanarSection) -> Vector4<f64> {
+        self.eps_grad * s.n + self.kappa_grad * s.m
+    }
+}
+
+impl PlanarSecond {
+    /// Local generalized force, as [`PlanarFirst::force`].
+    #[inline]
+    pub fn force(&self, s: &PlanarSection) -> Vector4<f64> {
+        self.first.force(s)
+    }
+
+    /// Local tangent `d force / dy` (rows: force component, columns: variable):
+    ///
+    /// ```text
+    /// N eps_yy + M kappa_yy + N_eps eps_y eps_y^T + M_kappa kappa_y kappa_y^T
+    ///   + M_eps kappa_y eps_y^T
+    /// ```
+    ///
+    /// Map with [`add_hessian`].
+    #[inline]
+    pub fn tangent(&self, s: &PlanarSection) -> Matrix4<f64> {
+        let (ge, gk) = (&self.first.eps_grad, &self.first.kappa_grad);
+        self.eps_hess * s.n
+            + self.kappa_hess * s.m
+            + ge * ge.transpose() * s.dn_deps
+            + gk * gk.transpose() * s.dm_dkappa
+            + gk * ge.transpose() * s.dm_deps
+    }
+}
+
+/// Element gradient `df/dq` (8) from the local gradient `(df/dr', df/dr'')` (4).
+#[inline]
+pub fn scatter_gradient(row: &ShapeRow, g: &Vector4<f64>) -> PlanarVector {
+    let mut out = PlanarVector::zeros();
+    add_gradient(&mut out, 1.0, row, g);
+    out
+}
+
+/// `out += w df/dq` for the local gradient `g = (df/dr', df/dr'')`.
+#[inline]
+pub fn add_gradient(out: &mut PlanarVector, w: f64, row: &ShapeRow, g: &Vector4<f64>) {
+    scatter::add_gradient::<2>(out.as_mut_slice(), w, row, g.as_slice());
+}
+
+/// Element Hessian `d^2 f/dq^2` (8x8) from the local Hessian with respect to `(r', r'')`
+/// (4x4). Also maps non-symmetric local tangents (rows: derivative of the force, columns:
+/// variable).
+#[inline]
+pub fn scatter_hessian(row: &ShapeRow, h: &Matrix4<f64>) -> PlanarMatrix {
+    let mut out = PlanarMatrix::zeros();
+    add_hessian(&mut out, 1.0, row, h);
+    out
+}
+
+/// `out += w d^2 f/dq^2` for the local Hessian `h` with respect to `(r', r'')`.
+#[inline]
+pub fn add_hessian(out: &mut PlanarMatrix, w: f64, row: &ShapeRow, h: &Matrix4<f64>) {
+    scatter::add_hessian::<2, 4, 8>(out, w, row, h);
+}

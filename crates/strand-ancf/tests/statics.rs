@@ -1,0 +1,251 @@
+//! Statics of the planar ANCF strand beam against independent references: the Euler-Bernoulli
+//! cantilever, the inextensible elastica (SPEC 7), the shooting solution with the same
+//! stick/slip law (`strand-elastica`), and the paper's section-3 observations.
+
+use strand_ancf::beam::{Beam, BeamSpec, Support};
+use strand_ancf::statics::{StaticOptions, solve_static};
+use strand_core::{
+    LawKind, LayDirection, LayerSpec, Material, SectionLaw, Strand, StrandSpec, WireSpec,
+};
+
+fn strand(length: f64, e: f64, rho: f64, layer: bool) -> Strand {
+    let mat = Material {
+        youngs_modulus: e,
+        poisson_ratio: 0.3,
+        density: rho,
+    };
+    let w = |d| WireSpec {
+        diameter: d,
+        material: mat,
+    };
+    Strand::new(StrandSpec {
+        length,
+        core: w(3.0e-3),
+        layers: if layer {
+            vec![LayerSpec {
+                wires: 6,
+                wire: w(2.0e-3),
+                lay_angle: 20f64.to_radians(),
+                phase: 0.0,
+                direction: LayDirection::Right,
+            }]
+        } else {
+            Vec::new()
+        },
+        friction: 0.3,
+    })
+    .unwrap()
+}
+
+fn cantilever(law: SectionLaw, elements: usize, mu: f64, g: f64) -> Beam {
+    Beam::new(
+        BeamSpec {
+            elements,
+            bending_points: None,
+            mass_per_length: mu,
+            direction: [1.0, 0.0],
+            gravity: [0.0, -g],
+            start: Some(Support::Clamped),
+            end: None,
+        },
+        law,
+    )
+    .unwrap()
+}
+
+fn tip(beam: &Beam, q: &[f64]) -> [f64; 2] {
+    let (p, _) = beam.sample(q, beam.length());
+    [p.x, p.y]
+}
+
+/// Small deflection: tip drop within 0.5 % of q L^4 / (8 EI).
+#[test]
+fn small_deflection_cantilever() {
+    let s = strand(1.0, 2.0e11, 7800.0, true);
+    let law = SectionLaw::new(&s, LawKind::Constant);
+    let ei = s.traditional().bending_stiffness;
+    let mu = s.mass_per_length();
+    let g = 1.0;
+    let beam = cantilever(law, 8, mu, g);
+    let sol = solve_static(&beam, &StaticOptions::default(), &mut |_| {}).unwrap();
+    let drop = -tip(&beam, &sol.q)[1];
+    let want = mu * g / (8.0 * ei);
+    let rel = (drop - want).abs() / want;
+    assert!(rel < 5e-3, "tip drop {drop} vs {want} ({rel})");
+}
+
+/// Large deflection, inextensible limit (EA L^2 / EI = 1e7: a locking-prone thin beam): the
+/// tip within 1e-4 L of the elastica values at q L^3 / EI = 1, 5, 10 with 16 elements, and the
+/// observed convergence order in elements.
+#[test]
+fn large_deflection_elastica_and_convergence_order() {
+    let cases = [
+        (1.0, 0.0087536, 0.1234714),
+        (5.0, 0.1533428, 0.4959050),
+        (10.0, 0.3436462, 0.7001997),
+    ];
+    let s = strand(1.0, 2.0e8, 7801.0, false);
+    for (load, u, v) in cases {
+        let mut errors = Vec::new();
+        for n in [4usize, 8, 16] {
+            let law = SectionLaw::constant(&s, 1.0, 1.0e7);
+            let beam = cantilever(law, n, 1.0, load);
+            let sol = solve_static(&beam, &StaticOptions::default(), &mut |_| {}).unwrap();
+            let t = tip(&beam, &sol.q);
+            let err = (t[0] - (1.0 - u)).hypot(t[1] + v);
+            errors.push(err);
+        }
+        let order = (errors[1] / errors[2]).log2();
+        println!(
+            "q L^3/EI = {load}: tip errors {:.3e} {:.3e} {:.3e} (4, 8, 16 elements), order {order:.2}",
+            errors[0], errors[1], errors[2]
+        );
+        assert!(errors[2] < 1e-4, "error {} at 16 elements", errors[2]);
+        assert!(errors[2] < errors[1] && errors[1] < errors[0]);
+        assert!(order > 1.5, "observed order {order}");
+    }
+}
+
+/// Planar statics with the `continuous` law converge to the shooting solution of the same law
+/// on the paper's Table 1 strand under g = 8 (q L^3 / K_min = 69): the error falls as elements
+/// are added and is below 1e-3 L at 32 elements.
+#[test]
+fn continuous_law_converges_to_the_shooting_solution() {
+    let s = strand(0.4, 2.0e8, 7801.0, true);
+    let g = 8.0;
+    let q = s.mass_per_length() * g;
+    let reference = strand_elastica::solve(
+        &strand_elastica::Cantilever::new(s.length(), q),
+        &strand_elastica::StrandLaw::new(SectionLaw::new(&s, LawKind::Continuous)),
+        &strand_elastica::Options::default(),
+    )
+    .unwrap();
+    let mut errors = Vec::new();
+    for n in [8usize, 16, 32] {
+        let beam = cantilever(
+            SectionLaw::new(&s, LawKind::Continuous),
+            n,
+            s.mass_per_length(),
+            g,
+        );
+        let sol = solve_static(&beam, &StaticOptions::default(), &mut |_| {}).unwrap();
+        // Largest distance over the strand at equal material coordinate.
+        let err = (0..=200)
+            .map(|i| {
+                let x = s.length() * i as f64 / 200.0;
+                let (p, _) = beam.sample(&sol.q, x);
+                let r = reference.position(x);
+                (p.x - r[0]).hypot(p.y - r[1])
+            })
+            .fold(0.0, f64::max);
+        println!(
+            "{n} elements: max distance {err:.3e} m ({:.3e} L), {} steps, {} iterations, {} cuts",
+            err / s.length(),
+            sol.steps,
+            sol.iterations,
+            sol.cuts
+        );
+        errors.push(err);
+    }
+    assert!(errors[1] < errors[0] && errors[2] < errors[1], "{errors:?}");
+    assert!(errors[2] < 1e-3 * s.length(), "{errors:?}");
+}
+
+/// The paper's section-3 strand under g = -12 (Figs. 10-12): the tension at x = 0.92, 0.925,
+/// 0.93 m within 5 % of 0.149, 0.14, 0.13 N; the bending stiffness is K_min at the root and
+/// rises toward the all-stick value near the tip; the traditional strand sags less.
+#[test]
+fn paper_section3_tension_stiffness_and_sag() {
+    let s = strand(1.0, 2.0e9, 5747.0, true);
+    let g = 12.0;
+    let law = SectionLaw::new(&s, LawKind::Continuous);
+    let beam = cantilever(law.clone(), 30, s.mass_per_length(), g);
+    let sol = solve_static(&beam, &StaticOptions::default(), &mut |_| {}).unwrap();
+    let ea = law.axial_stiffness();
+    for (x, want) in [(0.92, 0.149), (0.925, 0.14), (0.93, 0.13)] {
+        // Tension from the assumed strain at the bending point nearest to x.
+        let p = sol
+            .points
+            .iter()
+            .min_by(|a, b| (a.x - x).abs().total_cmp(&(b.x - x).abs()))
+            .unwrap();
+        // Interpolate linearly between the two neighbouring points.
+        let i = sol.points.iter().position(|q| q.x > x).unwrap();
+        let (a, b) = (&sol.points[i - 1], &sol.points[i]);
+        let t = ea * (a.eps + (b.eps - a.eps) * (x - a.x) / (b.x - a.x));
+        assert!((p.x - x).abs() < 0.02);
+        let rel = (t - want) / want;
+        println!(
+            "x = {x}: tension {t:.4} N (paper {want}, {:+.1} %)",
+            100.0 * rel
+        );
+        assert!(rel.abs() < 0.05, "tension {t} at {x} vs {want}");
+    }
+    let secant = |p: &strand_ancf::beam::PointState| {
+        law.planar_secant(&law.station(p.x), p.eps, p.kappa, &[])
+    };
+    // At the root every wire slips and the stiffness is K_min (the first integration point
+    // lies 1 mm from the clamp, where the tension q (L - x) |sin(theta)| is already about
+    // 0.02 N, so the friction moment is small but not zero there).
+    let p0 = &sol.points[0];
+    let root = secant(p0);
+    let kmin = s.min_bending_stiffness();
+    assert!(
+        (root - kmin).abs() < 1e-2 * kmin,
+        "root stiffness {root} vs K_min {kmin}"
+    );
+    assert!(
+        p0.slipping >= 4,
+        "only {} wires slip at the root",
+        p0.slipping
+    );
+    // Toward the tip the wires stick: the stiffness rises to the all-stick K_max (six wires:
+    // K_min + sum K_stick is K_max at every station). At the very end the tension, and with it
+    // the friction, vanishes again, so look at the largest value over the last 20 %.
+    let kmax = s.max_bending_stiffness();
+    let top = sol
+        .points
+        .iter()
+        .filter(|p| p.x > 0.8)
+        .map(secant)
+        .fold(0.0, f64::max);
+    println!("root stiffness {root:.4e}, largest near the tip {top:.4e}, K_max {kmax:.4e}");
+    for p in sol.points.iter().step_by(sol.points.len() / 20) {
+        println!(
+            "  x {:.3} kappa {:+.3e} T {:.3e} K {:.4e}",
+            p.x,
+            p.kappa,
+            ea * p.eps,
+            secant(p)
+        );
+    }
+    assert!(
+        (top - kmax).abs() < 1e-6 * kmax,
+        "largest stiffness near the tip {top}"
+    );
+    // Mean stiffness over the last 20 % exceeds that over the first half.
+    let mean = |lo: f64, hi: f64| {
+        let v: Vec<f64> = sol
+            .points
+            .iter()
+            .filter(|p| p.x >= lo && p.x <= hi)
+            .map(secant)
+            .collect();
+        v.iter().sum::<f64>() / v.len() as f64
+    };
+    assert!(mean(0.8, 1.0) > 2.0 * mean(0.0, 0.5));
+
+    let trad = cantilever(
+        SectionLaw::new(&s, LawKind::Constant),
+        30,
+        s.mass_per_length(),
+        g,
+    );
+    let ts = solve_static(&trad, &StaticOptions::default(), &mut |_| {}).unwrap();
+    let (te, tt) = (tip(&beam, &sol.q), tip(&trad, &ts.q));
+    println!("tip equivalent {te:?}, traditional {tt:?}");
+    assert!(
+        tt[1] > te[1] && tt[0] > te[0],
+        "traditional sags less in X and Y"
+    );
+}

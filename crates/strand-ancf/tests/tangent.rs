@@ -1,0 +1,171 @@
+//! The assembled tangent stiffness equals the finite-difference Jacobian of the assembled
+//! generalized elastic forces, for every law, away from stick/slip switch points; a rigid
+//! motion of the unstrained strand produces no force and no energy.
+
+use strand_ancf::band::BandMatrix;
+use strand_ancf::beam::{Beam, BeamSpec, Support};
+use strand_core::{
+    LawKind, LayDirection, LayerSpec, Material, SectionLaw, Strand, StrandSpec, WireSpec,
+};
+
+fn strand() -> Strand {
+    let mat = Material {
+        youngs_modulus: 2.0e8,
+        poisson_ratio: 0.3,
+        density: 7801.0,
+    };
+    let w = |d| WireSpec {
+        diameter: d,
+        material: mat,
+    };
+    Strand::new(StrandSpec {
+        length: 0.4,
+        core: w(3.0e-3),
+        layers: vec![LayerSpec {
+            wires: 6,
+            wire: w(2.0e-3),
+            lay_angle: 20f64.to_radians(),
+            phase: 0.3,
+            direction: LayDirection::Right,
+        }],
+        friction: 0.3,
+    })
+    .unwrap()
+}
+
+fn beam(kind: LawKind, start: Option<Support>) -> Beam {
+    let s = strand();
+    Beam::new(
+        BeamSpec {
+            elements: 4,
+            bending_points: None,
+            mass_per_length: s.mass_per_length(),
+            direction: [1.0, 0.0],
+            gravity: [0.0, -9.81],
+            start,
+            end: None,
+        },
+        SectionLaw::new(&s, kind),
+    )
+    .unwrap()
+}
+
+/// A bent and stretched configuration: an arc of curvature `k` with strain `eps`.
+fn arc(beam: &Beam, k: f64, eps: f64) -> Vec<f64> {
+    let mut q = beam.reference().to_vec();
+    let n = q.len() / 4;
+    for j in 0..n {
+        let s = j as f64 * beam.element_length();
+        let th = -k * s;
+        let (c, si) = (th.cos(), th.sin());
+        let (x, y) = if k == 0.0 {
+            (s, 0.0)
+        } else {
+            (si / -k, (1.0 - c) / k)
+        };
+        let st = 1.0 + eps;
+        q[4 * j..4 * j + 4].copy_from_slice(&[st * x, -st * y.abs() * k.signum(), st * c, st * si]);
+    }
+    q
+}
+
+#[test]
+fn tangent_matches_finite_differences() {
+    for kind in [
+        LawKind::Constant,
+        LawKind::Continuous,
+        LawKind::Paper,
+        LawKind::Hysteretic,
+    ] {
+        let b = beam(kind, None);
+        let n = b.coords();
+        for (k, eps) in [(0.5, 1e-3), (3.0, 2e-3), (0.01, 5e-4)] {
+            let mut q = arc(&b, k, eps);
+            // Perturb so that the state is generic.
+            for (i, v) in q.iter_mut().enumerate() {
+                *v += 1e-4 * ((i as f64) * 1.7).sin();
+            }
+            let slip = vec![0.0; b.state_len()];
+            let mut trial = slip.clone();
+            let mut f0 = vec![0.0; n];
+            let mut t = BandMatrix::zeros(b.dofs(), b.bandwidth(), b.bandwidth());
+            b.internal(&q, &slip, &mut trial, &mut f0, Some(&mut t), None)
+                .unwrap();
+            let base = b
+                .internal(&q, &slip, &mut trial, &mut f0, None, None)
+                .unwrap();
+            // Row scales: a row mixes stiff axial and soft bending entries, so each entry is
+            // compared with a relative tolerance plus a small floor of its row's largest entry.
+            let row_scale: Vec<f64> = (0..n)
+                .map(|i| (0..n).map(|j| t.get(i, j).abs()).fold(0.0, f64::max))
+                .collect();
+            let mut worst: f64 = 0.0;
+            let mut skipped = 0;
+            for j in 0..n {
+                let h = 1e-7;
+                let (mut fp, mut fm) = (vec![0.0; n], vec![0.0; n]);
+                let mut qp = q.clone();
+                qp[j] += h;
+                let ep = b
+                    .internal(&qp, &slip, &mut trial, &mut fp, None, None)
+                    .unwrap();
+                let mut qm = q.clone();
+                qm[j] -= h;
+                let em = b
+                    .internal(&qm, &slip, &mut trial, &mut fm, None, None)
+                    .unwrap();
+                if ep.slipping != base.slipping || em.slipping != base.slipping {
+                    skipped += 1;
+                    continue; // the difference straddles a switch
+                }
+                for i in 0..n {
+                    let fd = (fp[i] - fm[i]) / (2.0 * h);
+                    let an = t.get(i, j);
+                    let allowed = 1e-4 * an.abs() + 1e-7 * row_scale[i] + 1e-12;
+                    worst = worst.max((fd - an).abs() / allowed);
+                }
+            }
+            println!(
+                "{kind} k {k}: worst difference {worst:.2e} of the allowed, skipped {skipped}, {} slipping",
+                base.slipping
+            );
+            assert!(
+                skipped < n / 2,
+                "{kind}: too many columns straddle a switch"
+            );
+            assert!(
+                worst < 1.0,
+                "{kind} k {k}: tangent differs from FD ({worst:e} of the allowed)"
+            );
+        }
+    }
+}
+
+#[test]
+fn rigid_motion_gives_no_force_or_energy() {
+    for kind in [LawKind::Constant, LawKind::Continuous, LawKind::Hysteretic] {
+        let b = beam(kind, None);
+        let n = b.coords();
+        let (c, s) = (0.7f64.cos(), 0.7f64.sin());
+        let mut q = b.reference().to_vec();
+        for j in 0..n / 4 {
+            let v = &mut q[4 * j..4 * j + 4];
+            let (x, y, dx, dy) = (v[0], v[1], v[2], v[3]);
+            v.copy_from_slice(&[
+                c * x - s * y + 3.0,
+                s * x + c * y - 2.0,
+                c * dx - s * dy,
+                s * dx + c * dy,
+            ]);
+        }
+        let slip = vec![0.0; b.state_len()];
+        let mut trial = slip.clone();
+        let mut f = vec![0.0; n];
+        let e = b
+            .internal(&q, &slip, &mut trial, &mut f, None, None)
+            .unwrap();
+        let fmax = f.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        assert!(fmax < 1e-9, "{kind}: force {fmax}");
+        assert!(e.energy.abs() < 1e-15, "{kind}: energy {}", e.energy);
+    }
+}
