@@ -367,6 +367,30 @@ impl Beam {
         Ok(sum)
     }
 
+    /// Tangent of element `e` alone at coordinates `q`, from a state without slip (for the
+    /// stable-step bound).
+    pub(crate) fn element_tangent(&self, e: usize, q: &[f64]) -> Result<PlanarMatrix, BeamError> {
+        let rule = &self.rules[e];
+        let ws = if self.law.kind().has_state() {
+            self.wires
+        } else {
+            0
+        };
+        let slip = vec![0.0; rule.bend.len() * ws];
+        let mut trial = slip.clone();
+        let mut k = PlanarMatrix::zeros();
+        self.element(
+            e,
+            rule,
+            &self.element_coords(q, e),
+            &slip,
+            &mut trial,
+            Some(&mut k),
+            None,
+        )?;
+        Ok(k)
+    }
+
     /// Forces (and tangent) of one element.
     #[allow(clippy::too_many_arguments)]
     fn element(

@@ -23,6 +23,7 @@
 
 pub mod band;
 pub mod beam;
+pub mod dynamics;
 pub mod error;
 pub mod load;
 pub mod mass;

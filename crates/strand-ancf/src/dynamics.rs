@@ -1,0 +1,711 @@
+//! Dynamics of the strand beam, `M q'' + Q_e(q) = Q_g` (eq. (47) with the supports
+//! eliminated), from rest in the reference configuration (SPEC 5).
+//!
+//! * Stoermer-Verlet (the paper's integrator), explicit: the constant mass matrix is factored
+//!   once; the stable step is bounded from the element eigenvalues (the largest frequency of
+//!   an assembly is below the largest of its elements, for consistent mass).
+//! * Generalized-alpha (Chung-Hulbert parameters in the Arnold-Bruels form), implicit: Newton
+//!   on `S = beta' M + K` with the analytic tangent and a band LU. Spectral radius 1 gives the
+//!   trapezoidal rule (no numerical damping).
+//!
+//! Energy accounting (SPEC 2): kinetic `1/2 v^T M v`, gravity `-Q_g . (q - q_0)`, elastic (the
+//! section laws' stored energy), and dissipated: the hysteretic law's slip work plus the work
+//! of the non-potential part of the stick/slip laws, `-energy_strain d eps` at every bending
+//! point (midpoint rule over each accepted step). Their sum stays at its initial value up to
+//! the integrator's own error, which is reported as the balance error.
+
+use nalgebra::{SMatrix, SymmetricEigen};
+
+use crate::band::{BandMatrix, BandSolver};
+use crate::beam::{Beam, BeamError, PointState};
+use crate::mass::planar_mass;
+use crate::statics::{add_free, gather_free};
+
+/// Time integrator.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Scheme {
+    /// Stoermer-Verlet with the given step, or the estimated stable step times 0.9.
+    Verlet {
+        /// Time step (s); `None` for the estimate.
+        step: Option<f64>,
+    },
+    /// Generalized-alpha.
+    GeneralizedAlpha {
+        /// Time step (s).
+        step: f64,
+        /// Spectral radius at infinite frequency, in [0, 1].
+        spectral_radius: f64,
+    },
+}
+
+/// Settings of a dynamic run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DynamicOptions {
+    /// Simulated time (s).
+    pub duration: f64,
+    /// Integrator.
+    pub scheme: Scheme,
+    /// Interval between output frames (s).
+    pub output_interval: f64,
+    /// Generalized-alpha: Newton converges when the correction is below this times the
+    /// strand length.
+    pub increment: f64,
+    /// Generalized-alpha: Newton iterations per step before the run stops.
+    pub max_iterations: usize,
+}
+
+impl DynamicOptions {
+    /// Options with default Newton settings.
+    pub fn new(duration: f64, scheme: Scheme, output_interval: f64) -> Self {
+        DynamicOptions {
+            duration,
+            scheme,
+            output_interval,
+            increment: 1e-10,
+            max_iterations: 25,
+        }
+    }
+}
+
+/// Energies at one instant (J).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Energies {
+    /// Time (s).
+    pub t: f64,
+    /// Kinetic energy.
+    pub kinetic: f64,
+    /// Gravity potential relative to the initial configuration.
+    pub gravity: f64,
+    /// Stored elastic energy.
+    pub elastic: f64,
+    /// Work dissipated so far (slip and the non-potential part of the law).
+    pub dissipated: f64,
+}
+
+impl Energies {
+    /// Kinetic + gravity + elastic + dissipated: constant up to the integrator's error.
+    pub fn total(&self) -> f64 {
+        self.kinetic + self.gravity + self.elastic + self.dissipated
+    }
+}
+
+/// What an observer sees at an output time.
+#[derive(Debug, Clone, Copy)]
+pub struct Frame<'a> {
+    /// Time (s).
+    pub t: f64,
+    /// Coordinates, all of them.
+    pub q: &'a [f64],
+    /// Velocities, all of them (zero for supported coordinates).
+    pub v: &'a [f64],
+    /// Energies.
+    pub energies: Energies,
+    /// State at every bending point.
+    pub points: &'a [PointState],
+}
+
+/// Summary of a dynamic run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicSummary {
+    /// Time step used (s).
+    pub time_step: f64,
+    /// Estimated stable step of the explicit scheme (s).
+    pub stable_step: f64,
+    /// Steps taken.
+    pub steps: usize,
+    /// Newton iterations in total (generalized-alpha).
+    pub newton_iterations: usize,
+    /// Largest |total energy - initial total energy| over the run (J).
+    pub balance_error: f64,
+    /// Largest kinetic energy over the run (J): a scale for the balance error.
+    pub max_kinetic: f64,
+    /// Energies at the end.
+    pub last: Energies,
+    /// Final coordinates.
+    pub q: Vec<f64>,
+    /// Final velocities.
+    pub v: Vec<f64>,
+}
+
+/// Why a dynamic run stopped.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum DynamicError {
+    /// An evaluation failed (non-finite value, degenerate element).
+    #[error("at t = {t:.6} s (step {step}): {source}")]
+    Beam {
+        /// Time (s).
+        t: f64,
+        /// Step number.
+        step: usize,
+        /// What failed.
+        source: BeamError,
+    },
+    /// Newton did not converge in a step.
+    #[error(
+        "generalized-alpha: Newton did not converge at t = {t:.6} s (step {step}) within {iterations} \
+         iterations ({law} law); try a smaller time step"
+    )]
+    Newton {
+        /// Time (s).
+        t: f64,
+        /// Step number.
+        step: usize,
+        /// Iterations made.
+        iterations: usize,
+        /// Section law.
+        law: &'static str,
+    },
+    /// The explicit step exceeds the stability limit.
+    #[error(
+        "Verlet time step {step:e} s exceeds the estimated stable step {stable:e} s; use a step of at \
+         most {stable:e} s or the implicit generalized-alpha integrator"
+    )]
+    Unstable {
+        /// Requested step (s).
+        step: f64,
+        /// Estimated stable step (s).
+        stable: f64,
+    },
+    /// A matrix could not be factorized.
+    #[error("singular {0} matrix")]
+    Singular(&'static str),
+    /// Invalid settings.
+    #[error("{0}")]
+    Setup(String),
+}
+
+/// Estimated stable step of Stoermer-Verlet, 2 / omega_max, with omega_max the largest
+/// element frequency at the reference configuration (all wires sticking: the stiffest state).
+pub fn stable_step(beam: &Beam) -> Result<f64, BeamError> {
+    let mu = beam.spec().mass_per_length;
+    let me = planar_mass(mu, beam.element_length());
+    let chol = me
+        .cholesky()
+        .ok_or_else(|| BeamError::Setup("mass matrix not positive".into()))?;
+    let linv = chol
+        .l()
+        .try_inverse()
+        .ok_or_else(|| BeamError::Setup("mass matrix not invertible".into()))?;
+    let mut omega2: f64 = 0.0;
+    for e in 0..beam.spec().elements {
+        let k = beam.element_tangent(e, beam.reference())?;
+        let sym = (k + k.transpose()) * 0.5;
+        let a: SMatrix<f64, 8, 8> = linv * sym * linv.transpose();
+        let eig = SymmetricEigen::new(a);
+        omega2 = omega2.max(eig.eigenvalues.max());
+    }
+    Ok(2.0 / omega2.sqrt())
+}
+
+/// Bookkeeping shared by both integrators.
+struct Ledger {
+    q0_gravity: f64,
+    dissipated: f64,
+    e0: f64,
+    balance_error: f64,
+    max_kinetic: f64,
+}
+
+impl Ledger {
+    fn gravity(&self, beam: &Beam, q: &[f64]) -> f64 {
+        -q.iter()
+            .zip(beam.gravity_force())
+            .map(|(a, b)| a * b)
+            .sum::<f64>()
+            - self.q0_gravity
+    }
+
+    /// Adds the dissipation of an accepted step from the bending-point states.
+    fn dissipate(&mut self, slip_work: f64, old: &[PointState], new: &[PointState]) {
+        let np: f64 = old
+            .iter()
+            .zip(new)
+            .map(|(a, b)| -0.5 * a.weight * (a.energy_strain + b.energy_strain) * (b.eps - a.eps))
+            .sum();
+        self.dissipated += slip_work + np;
+    }
+
+    fn energies(
+        &mut self,
+        beam: &Beam,
+        t: f64,
+        q: &[f64],
+        vf: &[f64],
+        mv: &mut [f64],
+        elastic: f64,
+    ) -> Energies {
+        beam.mass().mul_vec(vf, mv);
+        let kinetic = 0.5 * vf.iter().zip(mv.iter()).map(|(a, b)| a * b).sum::<f64>();
+        let e = Energies {
+            t,
+            kinetic,
+            gravity: self.gravity(beam, q),
+            elastic,
+            dissipated: self.dissipated,
+        };
+        self.balance_error = self.balance_error.max((e.total() - self.e0).abs());
+        self.max_kinetic = self.max_kinetic.max(kinetic);
+        e
+    }
+}
+
+/// Runs the dynamics of `beam` from rest; `observer` sees the state at t = 0 and every
+/// output interval (and the last step).
+pub fn run_dynamic(
+    beam: &Beam,
+    opts: &DynamicOptions,
+    observer: &mut dyn FnMut(Frame<'_>),
+) -> Result<DynamicSummary, DynamicError> {
+    if !(opts.duration > 0.0 && opts.output_interval > 0.0) {
+        return Err(DynamicError::Setup(
+            "duration and output interval must be positive".into(),
+        ));
+    }
+    let stable = stable_step(beam).map_err(|source| DynamicError::Beam {
+        t: 0.0,
+        step: 0,
+        source,
+    })?;
+    match opts.scheme {
+        Scheme::Verlet { step } => {
+            let h = step.unwrap_or(0.9 * stable);
+            if h > stable {
+                return Err(DynamicError::Unstable { step: h, stable });
+            }
+            verlet(beam, opts, h, stable, observer)
+        }
+        Scheme::GeneralizedAlpha {
+            step,
+            spectral_radius,
+        } => {
+            if !(step > 0.0 && (0.0..=1.0).contains(&spectral_radius)) {
+                return Err(DynamicError::Setup(
+                    "generalized-alpha needs a positive step and a spectral radius in [0, 1]"
+                        .into(),
+                ));
+            }
+            generalized_alpha(beam, opts, step, spectral_radius, stable, observer)
+        }
+    }
+}
+
+/// Full-length velocity vector from the free velocities.
+fn scatter_velocity(beam: &Beam, vf: &[f64], v: &mut [f64]) {
+    for (g, x) in v.iter_mut().enumerate() {
+        *x = beam.free_index(g).map_or(0.0, |i| vf[i]);
+    }
+}
+
+/// Number of steps of size about `h` that fit the duration, and the step that makes them fit.
+fn steps_for(duration: f64, h: f64) -> (usize, f64) {
+    let n = (duration / h).ceil().max(1.0) as usize;
+    (n, duration / n as f64)
+}
+
+fn verlet(
+    beam: &Beam,
+    opts: &DynamicOptions,
+    h: f64,
+    stable: f64,
+    observer: &mut dyn FnMut(Frame<'_>),
+) -> Result<DynamicSummary, DynamicError> {
+    let (n_steps, h) = steps_for(opts.duration, h);
+    let nf = beam.dofs();
+    let mut mass = BandSolver::default();
+    if !mass.factorize(beam.mass()) {
+        return Err(DynamicError::Singular("mass"));
+    }
+    let mut q = beam.reference().to_vec();
+    let mut vf = vec![0.0; nf];
+    let mut v = vec![0.0; q.len()];
+    let mut af = vec![0.0; nf];
+    let mut force = vec![0.0; q.len()];
+    let mut mv = vec![0.0; nf];
+    let mut slip = vec![0.0; beam.state_len()];
+    let mut trial = slip.clone();
+    let mut pts = vec![PointState::default(); beam.points()];
+    let mut pts_new = pts.clone();
+    let mut g_free = vec![0.0; nf];
+    gather_free(beam, beam.gravity_force(), &mut g_free);
+
+    let fail = |t: f64, step: usize| move |source| DynamicError::Beam { t, step, source };
+    // Acceleration a = M^-1 (Q_g - Q_e) of the free coordinates.
+    let accel = |force: &[f64], af: &mut [f64]| {
+        for (g, f) in force.iter().enumerate() {
+            if let Some(i) = beam.free_index(g) {
+                af[i] = g_free[i] - f;
+            }
+        }
+        mass.solve(af);
+    };
+    let ev = beam
+        .internal(&q, &slip, &mut trial, &mut force, None, Some(&mut pts))
+        .map_err(fail(0.0, 0))?;
+    accel(&force, &mut af);
+    let mut ledger = Ledger {
+        q0_gravity: -q
+            .iter()
+            .zip(beam.gravity_force())
+            .map(|(a, b)| a * b)
+            .sum::<f64>(),
+        dissipated: 0.0,
+        e0: ev.energy,
+        balance_error: 0.0,
+        max_kinetic: 0.0,
+    };
+    let mut en = ledger.energies(beam, 0.0, &q, &vf, &mut mv, ev.energy);
+    observer(Frame {
+        t: 0.0,
+        q: &q,
+        v: &v,
+        energies: en,
+        points: &pts,
+    });
+    let mut next_out = opts.output_interval;
+    for step in 1..=n_steps {
+        let t = step as f64 * h;
+        for i in 0..nf {
+            vf[i] += 0.5 * h * af[i];
+        }
+        add_free(beam, &mut q, h, &vf);
+        let ev = beam
+            .internal(&q, &slip, &mut trial, &mut force, None, Some(&mut pts_new))
+            .map_err(fail(t, step))?;
+        accel(&force, &mut af);
+        for i in 0..nf {
+            vf[i] += 0.5 * h * af[i];
+        }
+        if !vf.iter().all(|x| x.is_finite()) {
+            return Err(DynamicError::Beam {
+                t,
+                step,
+                source: BeamError::NonFinite {
+                    element: 0,
+                    x: f64::NAN,
+                    quantity: "velocity",
+                },
+            });
+        }
+        slip.copy_from_slice(&trial);
+        ledger.dissipate(ev.slip_work, &pts, &pts_new);
+        std::mem::swap(&mut pts, &mut pts_new);
+        en = ledger.energies(beam, t, &q, &vf, &mut mv, ev.energy);
+        if t >= next_out - 1e-9 * h || step == n_steps {
+            scatter_velocity(beam, &vf, &mut v);
+            observer(Frame {
+                t,
+                q: &q,
+                v: &v,
+                energies: en,
+                points: &pts,
+            });
+            while next_out <= t + 1e-9 * h {
+                next_out += opts.output_interval;
+            }
+        }
+    }
+    scatter_velocity(beam, &vf, &mut v);
+    Ok(DynamicSummary {
+        time_step: h,
+        stable_step: stable,
+        steps: n_steps,
+        newton_iterations: 0,
+        balance_error: ledger.balance_error,
+        max_kinetic: ledger.max_kinetic,
+        last: en,
+        q,
+        v,
+    })
+}
+
+/// State of the generalized-alpha integrator (free coordinates) and its workspace.
+struct AlphaState {
+    q: Vec<f64>,
+    vf: Vec<f64>,
+    /// True acceleration q''.
+    acc: Vec<f64>,
+    /// Algorithmic acceleration a.
+    alg: Vec<f64>,
+    slip: Vec<f64>,
+}
+
+impl AlphaState {
+    fn copy_from(&mut self, o: &AlphaState) {
+        self.q.copy_from_slice(&o.q);
+        self.vf.copy_from_slice(&o.vf);
+        self.acc.copy_from_slice(&o.acc);
+        self.alg.copy_from_slice(&o.alg);
+        self.slip.copy_from_slice(&o.slip);
+    }
+}
+
+struct AlphaWork {
+    force: Vec<f64>,
+    r: Vec<f64>,
+    dq: Vec<f64>,
+    mv: Vec<f64>,
+    trial: Vec<f64>,
+    g_free: Vec<f64>,
+    k: BandMatrix,
+    solver: BandSolver,
+    /// States to restore when a step is cut, one per level of cutting.
+    saved: Vec<AlphaState>,
+}
+
+/// Generalized-alpha parameters for spectral radius `rho`: (alpha_m, alpha_f, gamma, beta).
+fn alpha_parameters(rho: f64) -> (f64, f64, f64, f64) {
+    let am = (2.0 * rho - 1.0) / (rho + 1.0);
+    let af = rho / (rho + 1.0);
+    let gamma = 0.5 + af - am;
+    (am, af, gamma, 0.25 * (gamma + 0.5) * (gamma + 0.5))
+}
+
+/// Result of one accepted (possibly subdivided) step: Newton iterations, slip work and the
+/// elastic energy at its end; `points` holds the bending-point states at its end.
+struct StepOutcome {
+    iterations: usize,
+    slip_work: f64,
+    non_potential: f64,
+    elastic: f64,
+}
+
+/// Advances `st` by `h`; on Newton failure restores it and takes two half steps, down to
+/// `depth` halvings.
+#[allow(clippy::too_many_arguments)]
+fn alpha_step(
+    beam: &Beam,
+    opts: &DynamicOptions,
+    rho: f64,
+    h: f64,
+    depth: usize,
+    st: &mut AlphaState,
+    w: &mut AlphaWork,
+    pts: &mut [PointState],
+    pts_new: &mut [PointState],
+) -> Result<StepOutcome, usize> {
+    let (am, af, gamma, beta) = alpha_parameters(rho);
+    let beta_p = (1.0 - am) / (h * h * beta * (1.0 - af));
+    let gamma_p = gamma / (h * beta);
+    let nf = beam.dofs();
+    let tol = opts.increment * beam.length();
+    let level = w.saved.len() - depth - 1;
+    w.saved[level].copy_from(st);
+    // Predictor with q''_{n+1} = 0.
+    for i in 0..nf {
+        let a_new = (af * st.acc[i] - am * st.alg[i]) / (1.0 - am);
+        w.dq[i] = h * st.vf[i] + h * h * ((0.5 - beta) * st.alg[i] + beta * a_new);
+        st.vf[i] += h * ((1.0 - gamma) * st.alg[i] + gamma * a_new);
+        st.alg[i] = a_new;
+        st.acc[i] = 0.0;
+    }
+    add_free(beam, &mut st.q, 1.0, &w.dq);
+    let mut iterations = 0;
+    let mut outcome = None;
+    for _ in 0..opts.max_iterations {
+        iterations += 1;
+        let Ok(ev) = beam.internal(
+            &st.q,
+            &st.slip,
+            &mut w.trial,
+            &mut w.force,
+            Some(&mut w.k),
+            Some(pts_new),
+        ) else {
+            break;
+        };
+        beam.mass().mul_vec(&st.acc, &mut w.mv);
+        for (g, f) in w.force.iter().enumerate() {
+            if let Some(i) = beam.free_index(g) {
+                w.r[i] = w.mv[i] + f - w.g_free[i];
+            }
+        }
+        w.k.add_scaled(beta_p, beam.mass());
+        if !w.solver.factorize(&w.k) {
+            break;
+        }
+        w.dq.copy_from_slice(&w.r);
+        w.solver.solve(&mut w.dq);
+        let dn = w.dq.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        if !dn.is_finite() || dn > beam.length() {
+            break;
+        }
+        add_free(beam, &mut st.q, -1.0, &w.dq);
+        for i in 0..nf {
+            st.vf[i] -= gamma_p * w.dq[i];
+            st.acc[i] -= beta_p * w.dq[i];
+        }
+        // The ledger uses the forces before this last correction: it moved q by at most
+        // `tol`, which changes the energies by O(tol |Q|), far below the integrator's error.
+        if dn <= tol {
+            outcome = Some(ev);
+            break;
+        }
+    }
+    match outcome {
+        Some(ev) => {
+            for i in 0..nf {
+                st.alg[i] += (1.0 - af) / (1.0 - am) * st.acc[i];
+            }
+            st.slip.copy_from_slice(&w.trial);
+            let non_potential: f64 = pts
+                .iter()
+                .zip(pts_new.iter())
+                .map(|(a, b)| {
+                    -0.5 * a.weight * (a.energy_strain + b.energy_strain) * (b.eps - a.eps)
+                })
+                .sum();
+            pts.copy_from_slice(pts_new);
+            Ok(StepOutcome {
+                iterations,
+                slip_work: ev.slip_work,
+                non_potential,
+                elastic: ev.energy,
+            })
+        }
+        None if depth > 0 => {
+            st.copy_from(&w.saved[level]);
+            let a = alpha_step(beam, opts, rho, 0.5 * h, depth - 1, st, w, pts, pts_new)?;
+            let b = alpha_step(beam, opts, rho, 0.5 * h, depth - 1, st, w, pts, pts_new)?;
+            Ok(StepOutcome {
+                iterations: iterations + a.iterations + b.iterations,
+                slip_work: a.slip_work + b.slip_work,
+                non_potential: a.non_potential + b.non_potential,
+                elastic: b.elastic,
+            })
+        }
+        None => Err(iterations),
+    }
+}
+
+/// Halvings of a generalized-alpha step before the run stops.
+const MAX_CUTS: usize = 10;
+
+fn generalized_alpha(
+    beam: &Beam,
+    opts: &DynamicOptions,
+    h: f64,
+    rho: f64,
+    stable: f64,
+    observer: &mut dyn FnMut(Frame<'_>),
+) -> Result<DynamicSummary, DynamicError> {
+    let (n_steps, h) = steps_for(opts.duration, h);
+    let nf = beam.dofs();
+    let b = beam.bandwidth();
+    let zeros = vec![0.0; nf];
+    let new_state = || AlphaState {
+        q: beam.reference().to_vec(),
+        vf: zeros.clone(),
+        acc: zeros.clone(),
+        alg: zeros.clone(),
+        slip: vec![0.0; beam.state_len()],
+    };
+    let mut st = new_state();
+    let mut w = AlphaWork {
+        force: vec![0.0; beam.coords()],
+        r: zeros.clone(),
+        dq: zeros.clone(),
+        mv: zeros.clone(),
+        trial: vec![0.0; beam.state_len()],
+        g_free: zeros.clone(),
+        k: BandMatrix::zeros(nf, b, b),
+        solver: BandSolver::default(),
+        saved: (0..=MAX_CUTS).map(|_| new_state()).collect(),
+    };
+    gather_free(beam, beam.gravity_force(), &mut w.g_free);
+    let mut v = vec![0.0; beam.coords()];
+    let mut pts = vec![PointState::default(); beam.points()];
+    let mut pts_new = pts.clone();
+    let fail = |t: f64, step: usize| move |source| DynamicError::Beam { t, step, source };
+
+    let ev = beam
+        .internal(
+            &st.q,
+            &st.slip,
+            &mut w.trial,
+            &mut w.force,
+            None,
+            Some(&mut pts),
+        )
+        .map_err(fail(0.0, 0))?;
+    let mut m = BandSolver::default();
+    if !m.factorize(beam.mass()) {
+        return Err(DynamicError::Singular("mass"));
+    }
+    for (g, f) in w.force.iter().enumerate() {
+        if let Some(i) = beam.free_index(g) {
+            st.acc[i] = w.g_free[i] - f;
+        }
+    }
+    m.solve(&mut st.acc);
+    st.alg.copy_from_slice(&st.acc);
+    let mut ledger = Ledger {
+        q0_gravity: -st
+            .q
+            .iter()
+            .zip(beam.gravity_force())
+            .map(|(a, b)| a * b)
+            .sum::<f64>(),
+        dissipated: 0.0,
+        e0: ev.energy,
+        balance_error: 0.0,
+        max_kinetic: 0.0,
+    };
+    let mut en = ledger.energies(beam, 0.0, &st.q, &st.vf, &mut w.mv, ev.energy);
+    observer(Frame {
+        t: 0.0,
+        q: &st.q,
+        v: &v,
+        energies: en,
+        points: &pts,
+    });
+    let mut newton_iterations = 0;
+    let mut next_out = opts.output_interval;
+    for step in 1..=n_steps {
+        let t = step as f64 * h;
+        let out = alpha_step(
+            beam,
+            opts,
+            rho,
+            h,
+            MAX_CUTS,
+            &mut st,
+            &mut w,
+            &mut pts,
+            &mut pts_new,
+        )
+        .map_err(|iterations| DynamicError::Newton {
+            t,
+            step,
+            iterations,
+            law: beam.law().kind().name(),
+        })?;
+        newton_iterations += out.iterations;
+        ledger.dissipated += out.slip_work + out.non_potential;
+        en = ledger.energies(beam, t, &st.q, &st.vf, &mut w.mv, out.elastic);
+        if t >= next_out - 1e-9 * h || step == n_steps {
+            scatter_velocity(beam, &st.vf, &mut v);
+            observer(Frame {
+                t,
+                q: &st.q,
+                v: &v,
+                energies: en,
+                points: &pts,
+            });
+            while next_out <= t + 1e-9 * h {
+                next_out += opts.output_interval;
+            }
+        }
+    }
+    scatter_velocity(beam, &st.vf, &mut v);
+    Ok(DynamicSummary {
+        time_step: h,
+        stable_step: stable,
+        steps: n_steps,
+        newton_iterations,
+        balance_error: ledger.balance_error,
+        max_kinetic: ledger.max_kinetic,
+        last: en,
+        q: st.q,
+        v,
+    })
+}
