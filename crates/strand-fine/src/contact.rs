@@ -1,16 +1,24 @@
-//! Contact of a helical wire segment with the core: normal penalty and Coulomb friction with
-//! stick (Cundall-Strack tangential spring with history).
+//! Contact of a helical wire with the core: normal penalty and Coulomb friction with stick
+//! (Cundall-Strack tangential spring with stored history).
 //!
-//! The helical segment's centre `c` is paired with the closest point `q` on the axis of a core
-//! segment found by a local search from the previous pairing (helical wires run nearly
-//! parallel to the core, where a global closest-point search between beams is ill-posed).
-//! With the unit normal `n = (c - q) / |c - q|` the surface gap is
-//! `g = |c - q| - (r_core + r_wire)`; for `g < 0` the normal force is `k_n (-g)` along `n` on
-//! the wire. The tangential spring runs between two material points, one on each body, fixed
-//! in the bodies when the contact sticks (the history follows the contact as both bodies
-//! move); its force `-k_t u_t` is capped at `mu N`, and when the cap is reached the core-side
-//! point is moved so the spring holds exactly `mu N` (slip), which dissipates
-//! `mu N |slip|`.
+//! A contact point is a fixed point `p` on a helical segment's axis. It is paired with the core
+//! segment whose axial span contains its projection, found by a local search from the previous
+//! pairing (helical wires run nearly parallel to the core, where a global closest-point search
+//! between beams is ill-posed). With `q` the closest point on that core segment's axis,
+//! `n = (p - q) / |p - q|` and the rest distance `d_0` (the distance of `p` from the core axis
+//! in the lay geometry), the gap is `g = |p - q| - d_0`: the chord of a helical segment lies
+//! inside the helix, so `d_0` is slightly less than `r_c + r_w`, and the lay geometry touches
+//! with zero gap and zero force.
+//!
+//! * Normal: `N = k_n max(-g, 0)` on the wire along `n` at `p`, the opposite on the core at
+//!   `q`; energy `k_n g^2 / 2`. These loads are the exact gradient of that energy.
+//! * Tangential: the contact point `x` (on the line `q p`, dividing it in the ratio of the
+//!   radii) is stored as a material point of both bodies at each committed state. At the next
+//!   evaluation their relative displacement `du` is added to the stored elastic displacement
+//!   `u`, first rotated into the current tangent plane (its length kept); the force on the wire
+//!   is `-k_t u_t`, capped at `mu N` (slip: `u` is shortened to the cap and `mu N` times the
+//!   shortening is the work lost). Committing re-anchors both material points at the new
+//!   contact point, so the history follows the contact as it moves along the core.
 
 use nalgebra::Vector3;
 
@@ -27,34 +35,52 @@ pub struct ContactLaw {
     pub friction: f64,
 }
 
-impl ContactLaw {
-    /// Law whose penalty lets the expected normal force `force` (N) penetrate by
-    /// `penetration` (m): `k_n = force / penetration`; the tangential stiffness equals the
-    /// normal one.
-    pub fn from_allowed_penetration(force: f64, penetration: f64, friction: f64) -> Self {
-        let k = force / penetration;
+/// How the wire-to-core contacts are built.
+///
+/// Normal penalty: the line pressure a wire of tension `T_w` exerts on the core is
+/// `T_w sin^2(alpha) / R_w` per unit wire length (the helix curvature times the tension);
+/// `k_n` is chosen so that this pressure, lumped on a contact point's share of the segment,
+/// penetrates by `penetration d_w`. Tangential stick stiffness: a wire stuck to the core by a
+/// shear spring of `k'` per unit length follows the core's axial strain wave along the helix
+/// (wavenumber `q = sin(alpha) / R_w` along the wire) only up to the factor
+/// `1 / (1 + E_w A_w q^2 / k')`; `k' = E_w A_w q^2 / stick_loss` keeps that loss of the stick
+/// bending stiffness at `stick_loss`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactOptions {
+    /// Allowed penetration as a fraction of the wire diameter (-); default 1e-3.
+    pub penetration: f64,
+    /// Reference wire tension T_w (N) for the penalty; `None`: the tension at the wire strain
+    /// `reference_strain`, E_w A_w cos^2(alpha) eps_ref.
+    pub reference_tension: Option<f64>,
+    /// Wire strain defining the default reference tension (-); default 1e-3.
+    pub reference_strain: f64,
+    /// Allowed relative loss of the stick stiffness to the tangential spring's compliance
+    /// (-); default 0.05.
+    pub stick_loss: f64,
+    /// Friction coefficient; `None`: the strand's.
+    pub friction: Option<f64>,
+    /// Contact points per helical segment, 1 (centre) or 2 (at +-l/4); default 2.
+    pub points_per_segment: usize,
+}
+
+impl Default for ContactOptions {
+    fn default() -> Self {
         Self {
-            normal_stiffness: k,
-            tangential_stiffness: k,
-            friction,
+            penetration: 1e-3,
+            reference_tension: None,
+            reference_strain: 1e-3,
+            stick_loss: 0.05,
+            friction: None,
+            points_per_segment: 2,
         }
     }
 }
 
-/// Stick state of a contact: the material points joined by the tangential spring, in the
-/// body axes of the wire segment and of the core segment (m).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct StickAnchor {
-    /// Point on the wire segment, relative to its centre, body axes (m).
-    pub on_wire: Vector3<f64>,
-    /// Point on the core segment, relative to its centre, body axes (m).
-    pub on_core: Vector3<f64>,
-}
-
 /// Contact state.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ContactState {
     /// Surfaces apart.
+    #[default]
     Open,
     /// Closed, tangential force below mu N.
     Stick,
@@ -62,9 +88,56 @@ pub enum ContactState {
     Slip,
 }
 
-/// Loads of one contact on the wire and core segments (world axes), and its state.
+/// A contact point of a helical wire segment (fixed data).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactPoint {
+    /// Segment of the helical wire carrying the point.
+    pub segment: usize,
+    /// The point on the segment's axis, body axes, relative to its centre (m).
+    pub offset: Vector3<f64>,
+    /// Distance of the point from the core axis at rest (m): the gap is measured from it.
+    pub rest_distance: f64,
+    /// Share of the gap from the core axis to the contact point, r_c / (r_c + r_w) (-).
+    pub core_share: f64,
+    /// Penalty and friction.
+    pub law: ContactLaw,
+}
+
+/// Committed history of a contact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactHistory {
+    /// Core segment paired at the last commit.
+    pub core_segment: usize,
+    /// True when the contact was closed at the last commit.
+    pub closed: bool,
+    /// Stored tangential elastic displacement of the wire relative to the core, world axes
+    /// (m).
+    pub displacement: Vector3<f64>,
+    /// Contact point at the last commit in the wire segment's body axes (m).
+    pub on_wire: Vector3<f64>,
+    /// Contact point at the last commit in core segment `core_segment`'s body axes (m).
+    pub on_core: Vector3<f64>,
+}
+
+impl ContactHistory {
+    /// Open contact paired with core segment `core_segment`, no stored displacement.
+    pub fn open(core_segment: usize) -> Self {
+        Self {
+            core_segment,
+            closed: false,
+            displacement: Vector3::zeros(),
+            on_wire: Vector3::zeros(),
+            on_core: Vector3::zeros(),
+        }
+    }
+}
+
+/// Loads of one contact evaluation (world axes), its state, energies and the history to
+/// commit if the evaluation is accepted.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactLoad {
+    /// Core segment the core-side loads act on.
+    pub core_segment: usize,
     /// Force on the wire segment (N).
     pub force_wire: Vector3<f64>,
     /// Torque on the wire segment about its centre (N m).
@@ -77,14 +150,37 @@ pub struct ContactLoad {
     pub normal_force: f64,
     /// Tangential force on the wire (N).
     pub tangential_force: Vector3<f64>,
-    /// State after this evaluation.
+    /// Open, stick or slip.
     pub state: ContactState,
-    /// Anchor to commit if this evaluation is accepted (`None` when open).
-    pub anchor: Option<StickAnchor>,
-    /// Elastic energy in the normal and tangential springs (J).
-    pub energy: f64,
-    /// Length the anchor slipped in this evaluation (m); times mu N it is the work lost.
-    pub slip: f64,
+    /// Penalty energy k_n g^2 / 2 (J).
+    pub normal_energy: f64,
+    /// Energy stored in the tangential spring, |F_t|^2 / (2 k_t) (J).
+    pub tangential_energy: f64,
+    /// Work lost to slip since the last commit (J).
+    pub slip_work: f64,
+    /// History to commit.
+    pub history: ContactHistory,
+}
+
+impl ContactLoad {
+    /// Load of an open contact paired with core segment `core_segment`.
+    pub fn open_at(core_segment: usize) -> Self {
+        let z = Vector3::zeros();
+        Self {
+            core_segment,
+            force_wire: z,
+            torque_wire: z,
+            force_core: z,
+            torque_core: z,
+            normal_force: 0.0,
+            tangential_force: z,
+            state: ContactState::Open,
+            normal_energy: 0.0,
+            tangential_energy: 0.0,
+            slip_work: 0.0,
+            history: ContactHistory::open(core_segment),
+        }
+    }
 }
 
 /// Index of the core segment whose axis span contains the projection of `point`, searched
@@ -96,13 +192,17 @@ pub fn nearest_core_segment(
     guess: usize,
 ) -> usize {
     let mut j = guess.min(core.len() - 1);
+    let mut last_move = 0i8;
     for _ in 0..core.len() {
         let s = (point - core[j].position).dot(&core[j].tangent());
         let half = 0.5 * segments[j].length;
-        if s > half && j + 1 < core.len() {
+        // Never step back: in a kinked chain a point can project outside both neighbours.
+        if s > half && j + 1 < core.len() && last_move >= 0 {
             j += 1;
-        } else if s < -half && j > 0 {
+            last_move = 1;
+        } else if s < -half && j > 0 && last_move <= 0 {
             j -= 1;
+            last_move = -1;
         } else {
             break;
         }
@@ -110,82 +210,110 @@ pub fn nearest_core_segment(
     j
 }
 
-/// Evaluates the contact of wire segment `wire` (radius `r_wire`) with core segment `core`
-/// (radius `r_core`, length `core_length`), from the committed anchor `anchor`.
-pub fn evaluate(
-    law: &ContactLaw,
-    wire: &Pose,
-    r_wire: f64,
-    core: &Pose,
-    r_core: f64,
-    core_length: f64,
-    anchor: Option<StickAnchor>,
-) -> ContactLoad {
+/// Closest point (m) to `p` on the axis of the core segment at `core` of length `length`.
+pub fn closest_on_axis(p: &Vector3<f64>, core: &Pose, length: f64) -> Vector3<f64> {
     let t = core.tangent();
-    let c = wire.position;
-    let s = (c - core.position)
+    let s = (p - core.position)
         .dot(&t)
-        .clamp(-0.5 * core_length, 0.5 * core_length);
-    let q = core.position + t * s;
-    let d = c - q;
+        .clamp(-0.5 * length, 0.5 * length);
+    core.position + t * s
+}
+
+/// Evaluates contact point `cp` of the wire segment at `wire` against core segment `j` at
+/// `cj` (length `core_length`), from the committed `history`, whose anchor sits on the core
+/// segment at `anchor_core` (segment `history.core_segment`, `j` or a neighbour).
+pub fn evaluate_pair(
+    cp: &ContactPoint,
+    history: &ContactHistory,
+    wire: &Pose,
+    cj: &Pose,
+    j: usize,
+    core_length: f64,
+    anchor_core: &Pose,
+) -> ContactLoad {
+    let p = wire.point(&cp.offset);
+    let q = closest_on_axis(&p, cj, core_length);
+    let d = p - q;
     let dist = d.norm();
-    let gap = dist - (r_core + r_wire);
-    let zero = Vector3::zeros();
+    let gap = dist - cp.rest_distance;
     if gap >= 0.0 || dist == 0.0 {
-        return ContactLoad {
-            force_wire: zero,
-            torque_wire: zero,
-            force_core: zero,
-            torque_core: zero,
-            normal_force: 0.0,
-            tangential_force: zero,
-            state: ContactState::Open,
-            anchor: None,
-            energy: 0.0,
-            slip: 0.0,
-        };
+        return ContactLoad::open_at(j);
     }
+    let law = &cp.law;
     let n = d / dist;
     let fn_ = law.normal_stiffness * (-gap);
-    let anchor = anchor.unwrap_or_else(|| StickAnchor {
-        on_wire: wire.rotation.inverse_transform_vector(&(-n * r_wire)),
-        on_core: core
-            .rotation
-            .inverse_transform_vector(&(q + n * r_core - core.position)),
-    });
-    let aw = wire.point(&anchor.on_wire);
-    let ac = core.point(&anchor.on_core);
-    let u = aw - ac;
-    let ut = u - n * u.dot(&n);
-    let mut ft = -law.tangential_stiffness * ut;
+    let x = q + d * cp.core_share;
+    // Tangential elastic displacement of the wire relative to the core.
+    let (u, aw, ac) = if history.closed {
+        let aw = wire.point(&history.on_wire);
+        let ac = anchor_core.point(&history.on_core);
+        let u0 = history.displacement;
+        let mut ur = u0 - n * n.dot(&u0);
+        let (l0, lr) = (u0.norm(), ur.norm());
+        if lr > 0.0 {
+            ur *= l0 / lr;
+        }
+        let du = aw - ac;
+        (ur + du - n * n.dot(&du), aw, ac)
+    } else {
+        (Vector3::zeros(), x, x)
+    };
+    let kt = law.tangential_stiffness;
     let cap = law.friction * fn_;
-    let mut state = ContactState::Stick;
-    let mut new_anchor = anchor;
-    let mut slip = 0.0;
-    let ftn = ft.norm();
-    if ftn > cap {
-        ft *= if ftn > 0.0 { cap / ftn } else { 0.0 };
-        state = ContactState::Slip;
-        // Move the core-side point so the spring holds exactly mu N.
-        let ac_new = aw + ft / law.tangential_stiffness;
-        slip = (ac_new - ac).norm();
-        new_anchor.on_core = core
-            .rotation
-            .inverse_transform_vector(&(ac_new - core.position));
-    }
-    let fw = n * fn_ + ft;
+    let un = u.norm();
+    let (u_el, state, slip_work) = if kt * un > cap {
+        let u_el = if un > 0.0 { u * (cap / (kt * un)) } else { u };
+        (u_el, ContactState::Slip, cap * (un - cap / kt))
+    } else {
+        (u, ContactState::Stick, 0.0)
+    };
+    let ft = -kt * u_el;
+    let f_n = n * fn_;
+    let c = &wire.position;
     ContactLoad {
-        force_wire: fw,
-        torque_wire: (aw - c).cross(&ft),
-        force_core: -fw,
-        torque_core: (q - core.position).cross(&(-n * fn_)) + (ac - core.position).cross(&(-ft)),
+        core_segment: j,
+        force_wire: f_n + ft,
+        torque_wire: (p - c).cross(&f_n) + (aw - c).cross(&ft),
+        force_core: -(f_n + ft),
+        torque_core: (q - cj.position).cross(&(-f_n)) + (ac - cj.position).cross(&(-ft)),
         normal_force: fn_,
         tangential_force: ft,
         state,
-        anchor: Some(new_anchor),
-        energy: 0.5 * (fn_ * (-gap) + ft.norm_squared() / law.tangential_stiffness),
-        slip,
+        normal_energy: 0.5 * fn_ * (-gap),
+        tangential_energy: 0.5 * kt * u_el.norm_squared(),
+        slip_work,
+        history: ContactHistory {
+            core_segment: j,
+            closed: true,
+            displacement: u_el,
+            on_wire: wire.rotation.inverse_transform_vector(&(x - wire.position)),
+            on_core: cj.rotation.inverse_transform_vector(&(x - cj.position)),
+        },
     }
+}
+
+/// Evaluates contact point `cp` of the wire segment at `wire` against the core (poses
+/// `core`, segments `core_segments`), pairing it by a local search from the history's core
+/// segment.
+pub fn evaluate(
+    cp: &ContactPoint,
+    history: &ContactHistory,
+    wire: &Pose,
+    core: &[Pose],
+    core_segments: &[Segment],
+) -> ContactLoad {
+    let p = wire.point(&cp.offset);
+    let j = nearest_core_segment(core, core_segments, &p, history.core_segment);
+    let anchor = &core[history.core_segment.min(core.len() - 1)];
+    evaluate_pair(
+        cp,
+        history,
+        wire,
+        &core[j],
+        j,
+        core_segments[j].length,
+        anchor,
+    )
 }
 
 #[cfg(test)]
@@ -193,21 +321,34 @@ mod tests {
     use super::*;
     use nalgebra::UnitQuaternion;
 
+    fn point(k: f64) -> ContactPoint {
+        ContactPoint {
+            segment: 0,
+            offset: Vector3::zeros(),
+            rest_distance: 2.5e-3,
+            core_share: 0.6,
+            law: ContactLaw {
+                normal_stiffness: k,
+                tangential_stiffness: k,
+                friction: 0.3,
+            },
+        }
+    }
+
     /// A wire segment lying on a fixed core segment, pressed by N and pulled along the core
-    /// by P, integrated in time with the anchor committed every step.
-    fn pull(pull_force: f64, normal: f64, mu: f64) -> (f64, ContactState) {
-        let (rc, rw) = (1.5e-3, 1.0e-3);
-        let law = ContactLaw::from_allowed_penetration(normal, 1e-6, mu);
-        let core_seg = Segment::cylinder(0.02, rc, 7801.0);
-        let wire_seg = Segment::cylinder(0.005, rw, 7801.0);
-        let core = Pose::new(Vector3::zeros(), UnitQuaternion::identity());
-        // Start at the static penetration N / k_n.
+    /// by P, integrated in time with the history committed every step.
+    fn pull(pull_force: f64, normal: f64) -> (f64, ContactState) {
+        let cp = point(normal / 1e-6);
+        let law = cp.law;
+        let core_seg = Segment::cylinder(0.02, 1.5e-3, 7801.0);
+        let wire_seg = Segment::cylinder(0.005, 1e-3, 7801.0);
+        let core = [Pose::new(Vector3::zeros(), UnitQuaternion::identity())];
         let mut wire = Pose::new(
-            Vector3::new(0.0, rc + rw - normal / law.normal_stiffness, 0.0),
+            Vector3::new(0.0, 2.5e-3 - normal / law.normal_stiffness, 0.0),
             UnitQuaternion::identity(),
         );
         let mut v = Vector3::zeros();
-        let mut anchor = None;
+        let mut h = ContactHistory::open(0);
         let omega = (law.tangential_stiffness / wire_seg.mass).sqrt();
         let dt = 0.05 / omega;
         let external = Vector3::new(pull_force, -normal, 0.0);
@@ -215,12 +356,11 @@ mod tests {
         // Critical damping of the wire: a sudden pull must not overshoot into slip.
         let damping = 2.0 * omega * wire_seg.mass;
         for _ in 0..20_000 {
-            let l = evaluate(&law, &wire, rw, &core, rc, core_seg.length, anchor);
-            anchor = l.anchor;
+            let l = evaluate(&cp, &h, &wire, &core, &[core_seg]);
+            h = l.history;
             state = l.state;
             let f = l.force_wire + external - damping * v;
             v += f * (dt / wire_seg.mass);
-            // Translation only: the torque is resisted by the wire's own chain in a strand.
             wire.position += v * dt;
         }
         (wire.position.x, state)
@@ -230,17 +370,15 @@ mod tests {
     fn sticks_below_mu_n_and_slides_above() {
         let (n, mu) = (1.0, 0.3);
         let k = n / 1e-6;
-        // Below mu N: only the spring displacement P / k_t.
-        let (x, state) = pull(0.9 * mu * n, n, mu);
+        let (x, state) = pull(0.9 * mu * n, n);
         assert_eq!(state, ContactState::Stick);
         assert!(
             (x - 0.9 * mu * n / k).abs() < 1e-3 * 0.9 * mu * n / k,
             "x = {x:e}"
         );
-        // Above mu N: it slides at the damped terminal speed (P - mu N) / c over the run
-        // time T = 1000 / omega with c = 2 omega m: (P - mu N) 500 / k, plus the spring
-        // displacement mu N / k.
-        let (x, state) = pull(1.1 * mu * n, n, mu);
+        // Above mu N: the damped terminal speed (P - mu N) / c over T = 1000 / omega with
+        // c = 2 omega m gives (P - mu N) 500 / k, plus the spring displacement mu N / k.
+        let (x, state) = pull(1.1 * mu * n, n);
         assert_eq!(state, ContactState::Slip);
         let expected = 0.1 * mu * n * 500.0 / k + mu * n / k;
         assert!(
@@ -250,13 +388,16 @@ mod tests {
     }
 
     #[test]
-    fn open_when_apart() {
-        let law = ContactLaw::from_allowed_penetration(1.0, 1e-6, 0.3);
-        let core = Pose::new(Vector3::zeros(), UnitQuaternion::identity());
-        let wire = Pose::new(Vector3::new(0.0, 2.6e-3, 0.0), UnitQuaternion::identity());
-        let l = evaluate(&law, &wire, 1e-3, &core, 1.5e-3, 0.02, None);
-        assert_eq!(l.state, ContactState::Open);
-        assert_eq!(l.force_wire, Vector3::zeros());
+    fn open_at_zero_gap() {
+        let cp = point(1e6);
+        let core = [Pose::new(Vector3::zeros(), UnitQuaternion::identity())];
+        let seg = [Segment::cylinder(0.02, 1.5e-3, 7801.0)];
+        for y in [2.5e-3, 2.6e-3] {
+            let wire = Pose::new(Vector3::new(0.0, y, 0.0), UnitQuaternion::identity());
+            let l = evaluate(&cp, &ContactHistory::open(0), &wire, &core, &seg);
+            assert_eq!(l.state, ContactState::Open);
+            assert_eq!(l.force_wire, Vector3::zeros());
+        }
     }
 
     #[test]

@@ -17,7 +17,8 @@ use crate::model::{Energies, FineModel, ModelState, WireLoads};
 /// Upper bound on the highest circular frequency (rad/s) of the model linearised at `state`:
 /// Gershgorin row sums of `M'^{-1/2} K M'^{-1/2}`, where `M'` is the segment mass for
 /// translations and the smallest principal inertia for rotations (`M' <= M`, so the bound
-/// holds for the true mass matrix too).
+/// holds for the true mass matrix too). Contacts enter closed, with their stiffer spring
+/// (normal or tangential) in every direction, so the bound holds whichever contacts close.
 pub fn highest_frequency(model: &FineModel, state: &ModelState) -> f64 {
     let mut diag = Vec::with_capacity(6 * model.segment_count());
     for w in &model.wires {
@@ -27,7 +28,9 @@ pub fn highest_frequency(model: &FineModel, state: &ModelState) -> f64 {
         }
     }
     let mut rows = vec![0.0; diag.len()];
-    for e in model.element_tangents(state) {
+    let mut elements = model.joint_tangents(state);
+    elements.extend(model.contact_bound_tangents(state));
+    for e in elements {
         for (bi, si) in e.segments.iter().enumerate() {
             let Some(si) = si else { continue };
             for (bj, sj) in e.segments.iter().enumerate() {
@@ -102,6 +105,7 @@ impl Integrator {
                 }
             });
         model.compute_loads(state, 1.0, &mut self.loads);
+        model.commit_contacts(state, &self.loads);
         model
             .wires
             .par_iter()
@@ -119,10 +123,15 @@ impl Integrator {
 
     /// Energies of `state` from the loads already evaluated (no extra load evaluation).
     pub fn energies(&self, model: &FineModel, state: &ModelState) -> Energies {
-        let mut e = Energies::default();
+        let mut e = Energies {
+            friction_work: state.friction_work,
+            ..Default::default()
+        };
         for ((w, s), l) in model.wires.iter().zip(&state.wires).zip(&self.loads) {
             e.spring += l.spring_energy;
             e.gravity += l.gravity_energy;
+            e.contact += l.contact_energy;
+            e.friction_stored += l.friction_energy;
             for (k, seg) in w.chain.segments.iter().enumerate() {
                 e.kinetic_translation += 0.5 * seg.mass * s.velocities[k].norm_squared();
                 e.kinetic_rotation += seg.rotational_energy(&s.poses[k], &s.angular_momenta[k]);

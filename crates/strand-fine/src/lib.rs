@@ -9,7 +9,7 @@
 //! * [`model`]: wires, supports, gravity, state, loads and energies.
 //! * [`statics`]: Newton-Raphson static equilibrium; [`dynamics`]: symplectic time stepping.
 //!
-//! * [`contact`]: the wire-to-core contact element (penalty and Cundall-Strack friction).
+//! * [`contact`]: wire-to-core contact (penalty and Cundall-Strack friction with history).
 //!
 //! Units are SI throughout (m, kg, s, N, rad).
 //!
@@ -23,11 +23,10 @@
 //!   length.
 //! * Element tangents are central differences of the exact element loads (12 x 12 per
 //!   joint); the static solve factors their assembly with a sparse LU.
-//! * Loads are computed in parallel over wires; each wire's loads depend on that wire only,
-//!   so results are identical for any number of threads.
-//!
-//! The contact element is not yet part of [`FineModel`]: wires are joined only by their
-//! supports.
+//! * Loads are computed in parallel over wires; each wire's loads depend on that wire (and,
+//!   for contacts, on the core's poses) only, and the core's share of the contact loads is
+//!   summed in a fixed order, so results are identical for any number of threads.
+//! * Contact histories are committed only on accepted time steps and converged load steps.
 
 pub mod chain;
 pub mod contact;
@@ -40,7 +39,9 @@ pub mod statics;
 pub mod tangent;
 
 pub use chain::{Chain, WireSection};
-pub use contact::{ContactLaw, ContactLoad, ContactState, StickAnchor};
+pub use contact::{
+    ContactHistory, ContactLaw, ContactLoad, ContactOptions, ContactPoint, ContactState,
+};
 pub use dynamics::{Integrator, stable_time_step};
 pub use joint::{JointLoad, JointSpring, JointStiffness};
 pub use model::{

@@ -6,12 +6,17 @@
 //! the end point. A support joint carries the springs of the half segment between the wire's
 //! end and the first segment's centre (twice the stiffness of an interior joint), so that the
 //! chain's bending flexibility is distributed over the whole wire length.
+//!
+//! Contacts ([`crate::contact`]) belong to the helical wires; their core-side loads are added
+//! to the core after the parallel sweep over wires, in wire and contact order, so the sums are
+//! the same for any number of threads.
 
 use nalgebra::Vector3;
 use rayon::prelude::*;
 use strand_core::Strand;
 
 use crate::chain::{Chain, WireSection};
+use crate::contact::{self, ContactHistory, ContactLaw, ContactLoad, ContactOptions, ContactPoint};
 use crate::joint::JointSpring;
 use crate::segment::Pose;
 
@@ -54,6 +59,11 @@ pub struct Wire {
     pub chain: Chain,
     /// Ground joints acting on the wire.
     pub anchors: Vec<Anchor>,
+    /// Contact points of this wire with the core (helical wires only).
+    pub contacts: Vec<ContactPoint>,
+    /// Dead force on each segment's centre (N), scaled by the load factor like gravity;
+    /// empty for none.
+    pub external: Vec<Vector3<f64>>,
 }
 
 impl Wire {
@@ -62,6 +72,8 @@ impl Wire {
         Self {
             chain,
             anchors: Vec::new(),
+            contacts: Vec::new(),
+            external: Vec::new(),
         }
     }
 
@@ -90,12 +102,14 @@ impl Wire {
         });
     }
 
-    /// Adds loads at `poses` from joints, anchors and the gravity field `gravity` (m/s^2) to
-    /// `loads`; returns (spring energy, gravity potential) in J.
+    /// Adds loads at `poses` from joints, anchors, the gravity field `gravity` (m/s^2) and
+    /// the external forces times `load_factor` to `loads`; returns (spring energy, potential
+    /// of gravity and external forces) in J.
     fn add_loads(
         &self,
         poses: &[Pose],
         gravity: &Vector3<f64>,
+        load_factor: f64,
         loads: &mut WireLoads,
     ) -> (f64, f64) {
         let mut spring = self
@@ -112,6 +126,11 @@ impl Wire {
             let w = gravity * s.mass;
             loads.forces[k] += w;
             potential -= w.dot(&poses[k].position);
+        }
+        for (k, f) in self.external.iter().enumerate() {
+            let f = f * load_factor;
+            loads.forces[k] += f;
+            potential -= f.dot(&poses[k].position);
         }
         (spring, potential)
     }
@@ -187,6 +206,63 @@ impl FineModel {
         }
     }
 
+    /// Adds contact points between every helical wire of `strand` (wires 1..) and the core
+    /// (wire 0), with the stiffnesses of `options` (see [`ContactOptions`]).
+    pub fn add_contacts(&mut self, strand: &Strand, options: &ContactOptions) {
+        let Some(layer) = strand.layer() else { return };
+        let wire = &layer.spec.wire;
+        let (ew, aw) = (wire.material.youngs_modulus, wire.area());
+        let alpha = layer.lay_angle();
+        let tension = options
+            .reference_tension
+            .unwrap_or(ew * aw * alpha.cos().powi(2) * options.reference_strain);
+        let pressure = tension * alpha.sin().powi(2) / layer.radius;
+        let q = alpha.sin() / layer.radius;
+        let shear_per_length = ew * aw * q * q / options.stick_loss;
+        let friction = options.friction.unwrap_or(strand.friction());
+        let n_pts = options.points_per_segment.clamp(1, 2);
+        let (rc, rw) = (strand.core().radius(), wire.radius());
+        let (core_wire, helical) = self.wires.split_at_mut(1);
+        let core = &core_wire[0].chain;
+        for w in helical.iter_mut() {
+            let c = &w.chain;
+            let mut points = Vec::with_capacity(n_pts * c.len());
+            for (k, seg) in c.segments.iter().enumerate() {
+                let share = seg.length / n_pts as f64;
+                let law = ContactLaw {
+                    normal_stiffness: pressure * share / (options.penetration * wire.diameter),
+                    tangential_stiffness: shear_per_length * share,
+                    friction,
+                };
+                for i in 0..n_pts {
+                    let a = if n_pts == 1 {
+                        0.0
+                    } else {
+                        (i as f64 - 0.5) * 0.5 * seg.length
+                    };
+                    let offset = Vector3::new(a, 0.0, 0.0);
+                    let p = c.rest[k].point(&offset);
+                    let j = contact::nearest_core_segment(&core.rest, &core.segments, &p, 0);
+                    let q = contact::closest_on_axis(&p, &core.rest[j], core.segments[j].length);
+                    let rest_distance = (p - q).norm();
+                    points.push(ContactPoint {
+                        segment: k,
+                        offset,
+                        rest_distance,
+                        core_share: rc / (rc + rw),
+                        law,
+                    });
+                }
+            }
+            w.contacts = points;
+        }
+    }
+
+    /// Total number of contact points.
+    pub fn contact_count(&self) -> usize {
+        self.wires.iter().map(|w| w.contacts.len()).sum()
+    }
+
     /// Total number of segments.
     pub fn segment_count(&self) -> usize {
         self.wires.iter().map(|w| w.chain.len()).sum()
@@ -204,6 +280,26 @@ impl FineModel {
                     angular_momenta: vec![Vector3::zeros(); w.chain.len()],
                 })
                 .collect(),
+            contacts: self
+                .wires
+                .iter()
+                .map(|w| {
+                    w.contacts
+                        .iter()
+                        .map(|cp| {
+                            let p = w.chain.rest[cp.segment].point(&cp.offset);
+                            let core = &self.wires[0].chain;
+                            ContactHistory::open(contact::nearest_core_segment(
+                                &core.rest,
+                                &core.segments,
+                                &p,
+                                0,
+                            ))
+                        })
+                        .collect()
+                })
+                .collect(),
+            friction_work: 0.0,
         }
     }
 
@@ -216,35 +312,81 @@ impl FineModel {
                 torques: vec![Vector3::zeros(); w.chain.len()],
                 spring_energy: 0.0,
                 gravity_energy: 0.0,
+                contacts: w.contacts.iter().map(|_| ContactLoad::open_at(0)).collect(),
+                contact_energy: 0.0,
+                friction_energy: 0.0,
+                slip_work: 0.0,
             })
             .collect()
     }
 
-    /// Computes the loads on every segment at `state` with gravity scaled by `load_factor`,
-    /// in parallel over wires (each wire's loads depend only on that wire, so the result is
-    /// the same for any number of threads).
+    /// Computes the loads on every segment at `state` with gravity and external forces
+    /// scaled by `load_factor`, in parallel over wires; contacts are evaluated from the
+    /// committed histories in `state` and their trial results kept in `loads` (see
+    /// [`FineModel::commit_contacts`]). The result is the same for any number of threads.
     pub fn compute_loads(&self, state: &ModelState, load_factor: f64, loads: &mut [WireLoads]) {
         let g = self.gravity * load_factor;
+        let core_poses = &state.wires[0].poses;
+        let core_segs = &self.wires[0].chain.segments;
         self.wires
             .par_iter()
             .zip(state.wires.par_iter())
+            .zip(state.contacts.par_iter())
             .zip(loads.par_iter_mut())
-            .for_each(|((w, s), l)| {
+            .for_each(|(((w, s), hist), l)| {
                 l.forces.iter_mut().for_each(|f| *f = Vector3::zeros());
                 l.torques.iter_mut().for_each(|t| *t = Vector3::zeros());
-                let (spring, grav) = w.add_loads(&s.poses, &g, l);
+                let (spring, grav) = w.add_loads(&s.poses, &g, load_factor, l);
                 l.spring_energy = spring;
                 l.gravity_energy = grav;
+                let (mut ce, mut fe, mut sw) = (0.0, 0.0, 0.0);
+                for ((cp, h), out) in w.contacts.iter().zip(hist).zip(l.contacts.iter_mut()) {
+                    let c = contact::evaluate(cp, h, &s.poses[cp.segment], core_poses, core_segs);
+                    l.forces[cp.segment] += c.force_wire;
+                    l.torques[cp.segment] += c.torque_wire;
+                    ce += c.normal_energy;
+                    fe += c.tangential_energy;
+                    sw += c.slip_work;
+                    *out = c;
+                }
+                l.contact_energy = ce;
+                l.friction_energy = fe;
+                l.slip_work = sw;
             });
+        // The core's share, in a fixed order.
+        let (core, helical) = loads.split_at_mut(1);
+        let core = &mut core[0];
+        for l in helical.iter() {
+            for c in &l.contacts {
+                core.forces[c.core_segment] += c.force_core;
+                core.torques[c.core_segment] += c.torque_core;
+            }
+        }
+    }
+
+    /// Commits the contact histories evaluated into `loads` (at `state`) as the new
+    /// committed state, and adds their slip work to the accumulated friction loss.
+    pub fn commit_contacts(&self, state: &mut ModelState, loads: &[WireLoads]) {
+        for (h, l) in state.contacts.iter_mut().zip(loads) {
+            for (hi, c) in h.iter_mut().zip(&l.contacts) {
+                *hi = c.history;
+            }
+            state.friction_work += l.slip_work;
+        }
     }
 
     /// Energies at `state` (computes loads into `loads`).
     pub fn energies(&self, state: &ModelState, loads: &mut [WireLoads]) -> Energies {
         self.compute_loads(state, 1.0, loads);
-        let mut e = Energies::default();
+        let mut e = Energies {
+            friction_work: state.friction_work,
+            ..Default::default()
+        };
         for ((w, s), l) in self.wires.iter().zip(&state.wires).zip(loads.iter()) {
             e.spring += l.spring_energy;
             e.gravity += l.gravity_energy;
+            e.contact += l.contact_energy;
+            e.friction_stored += l.friction_energy;
             for (k, seg) in w.chain.segments.iter().enumerate() {
                 e.kinetic_translation += 0.5 * seg.mass * s.velocities[k].norm_squared();
                 e.kinetic_rotation += seg.rotational_energy(&s.poses[k], &s.angular_momenta[k]);
@@ -275,6 +417,10 @@ pub struct WireState {
 pub struct ModelState {
     /// One entry per wire, in the model's wire order.
     pub wires: Vec<WireState>,
+    /// Committed contact histories, one list per wire (empty for the core).
+    pub contacts: Vec<Vec<ContactHistory>>,
+    /// Work lost to friction on committed steps (J).
+    pub friction_work: f64,
 }
 
 /// Loads on one wire's segments and its energies.
@@ -286,8 +432,16 @@ pub struct WireLoads {
     pub torques: Vec<Vector3<f64>>,
     /// Elastic energy of the wire's joints and anchors (J).
     pub spring_energy: f64,
-    /// Gravity potential -sum m g . x (J).
+    /// Potential of gravity and external forces, -sum F . x (J).
     pub gravity_energy: f64,
+    /// Trial contact results of this wire's contact points.
+    pub contacts: Vec<ContactLoad>,
+    /// Penalty energy of this wire's contacts (J).
+    pub contact_energy: f64,
+    /// Energy in this wire's tangential contact springs (J).
+    pub friction_energy: f64,
+    /// Slip work of this wire's contacts since the last commit (J).
+    pub slip_work: f64,
 }
 
 /// Energies of the model (J).
@@ -301,12 +455,28 @@ pub struct Energies {
     pub gravity: f64,
     /// Elastic energy of joints and supports.
     pub spring: f64,
+    /// Penalty energy of the contacts.
+    pub contact: f64,
+    /// Energy stored in the tangential (stick) springs of the contacts.
+    pub friction_stored: f64,
+    /// Work lost to friction on committed steps (not part of [`Energies::total`]).
+    pub friction_work: f64,
 }
 
 impl Energies {
-    /// Sum of all energies.
+    /// Sum of all energies (kinetic, potential, springs, contact).
     pub fn total(&self) -> f64 {
-        self.kinetic_translation + self.kinetic_rotation + self.gravity + self.spring
+        self.kinetic_translation
+            + self.kinetic_rotation
+            + self.gravity
+            + self.spring
+            + self.contact
+            + self.friction_stored
+    }
+
+    /// Total energy plus the work lost to friction: constant up to the integrator's error.
+    pub fn balance(&self) -> f64 {
+        self.total() + self.friction_work
     }
 }
 

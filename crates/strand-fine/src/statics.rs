@@ -7,7 +7,9 @@
 //! weight, `l_ref` the largest segment length and `F_round = 100 eps x_max k_max` the force
 //! that 100 ulps of the largest coordinate make on the stiffest joint spring (the round-off
 //! floor of the residual: joint gaps are differences of absolute positions). The tangent
-//! is the assembled element stiffness, factored by a sparse LU.
+//! is the assembled element stiffness, factored by a sparse LU. Contact histories are frozen
+//! during the iterations of a load step and committed when it converges, so friction follows
+//! the load path step by step.
 
 use faer::linalg::solvers::SolveCore;
 use faer::sparse::{SparseColMat, Triplet};
@@ -28,6 +30,9 @@ pub struct StaticOptions {
     pub max_iterations: usize,
     /// Step halvings allowed in the line search.
     pub max_backtracks: usize,
+    /// Reference force F_ref (N) of the residual; `None`: the largest segment weight (or,
+    /// without gravity, E A 1e-9 of the stiffest wire).
+    pub force_scale: Option<f64>,
 }
 
 impl Default for StaticOptions {
@@ -37,6 +42,7 @@ impl Default for StaticOptions {
             tolerance: 1e-9,
             max_iterations: 40,
             max_backtracks: 20,
+            force_scale: None,
         }
     }
 }
@@ -115,11 +121,12 @@ fn residual_norms(loads: &[WireLoads], sc: &Scales) -> (f64, f64, f64) {
     (ratio, sq.sqrt(), max)
 }
 
-/// Total potential: spring energy plus the potential of the (scaled) gravity (J).
+/// Total potential: spring and contact energies plus the potential of the (scaled) loads
+/// (J).
 fn potential(loads: &[WireLoads]) -> f64 {
     loads
         .iter()
-        .map(|l| l.spring_energy + l.gravity_energy)
+        .map(|l| l.spring_energy + l.gravity_energy + l.contact_energy + l.friction_energy)
         .sum()
 }
 
@@ -166,7 +173,9 @@ pub fn solve_static(
     let g = model.gravity.norm();
     let weight = segs.clone().map(|s| s.mass * g).fold(0.0, f64::max);
     let l_ref = segs.map(|s| s.length).fold(0.0, f64::max);
-    let force = if weight > 0.0 {
+    let force = if let Some(f) = options.force_scale {
+        f
+    } else if weight > 0.0 {
         weight
     } else {
         // No load: scale by a small force of the stiffest wire.
@@ -307,6 +316,11 @@ pub fn solve_static(
         }
         iterations += it;
         residual = rel;
+        // The load step is accepted: commit the contact histories.
+        model.compute_loads(state, lambda, &mut loads);
+        model.commit_contacts(state, &loads);
+        trial.contacts.clone_from(&state.contacts);
+        trial.friction_work = state.friction_work;
     }
     Ok(StaticReport {
         load_steps: options.load_steps.max(1),

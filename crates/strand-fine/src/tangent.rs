@@ -3,9 +3,11 @@
 //! Generalized coordinates: per segment (global index `s`), six entries starting at `6 s`:
 //! the translation of the centre (m) and a world-frame rotation increment (rad).
 
-use nalgebra::SMatrix;
+use nalgebra::{Matrix3, SMatrix, Vector3};
 use rayon::prelude::*;
 
+use crate::contact::{self, ContactLoad};
+use crate::joint::perturb;
 use crate::model::{FineModel, ModelState};
 
 /// Stiffness of one element (joint or anchor) on its segments.
@@ -29,8 +31,131 @@ impl FineModel {
         off
     }
 
-    /// Element tangents at `state` (gravity is a constant load and adds no stiffness).
+    /// Element tangents at `state`: joints, anchors and contacts (gravity is a constant load
+    /// and adds no stiffness).
     pub fn element_tangents(&self, state: &ModelState) -> Vec<ElementTangent> {
+        let mut out = self.joint_tangents(state);
+        out.extend(self.contact_tangents(state));
+        out
+    }
+
+    /// Tangents of the contacts at `state` with the committed histories frozen: central
+    /// differences of the contact loads over the wire segment and the paired core segment
+    /// (the consistent tangent of the stick or slip branch; zero for an open contact).
+    pub fn contact_tangents(&self, state: &ModelState) -> Vec<ElementTangent> {
+        let offsets = self.segment_offsets();
+        let core = &self.wires[0].chain;
+        let core_poses = &state.wires[0].poses;
+        let per_wire: Vec<Vec<ElementTangent>> = self
+            .wires
+            .par_iter()
+            .zip(state.wires.par_iter())
+            .zip(state.contacts.par_iter())
+            .zip(offsets.par_iter())
+            .map(|(((w, s), hist), &off)| {
+                let mut out = Vec::new();
+                for (cp, h) in w.contacts.iter().zip(hist) {
+                    let wire = s.poses[cp.segment];
+                    let p = wire.point(&cp.offset);
+                    let j = contact::nearest_core_segment(
+                        core_poses,
+                        &core.segments,
+                        &p,
+                        h.core_segment,
+                    );
+                    let lj = core.segments[j].length;
+                    let hc = h.core_segment.min(core_poses.len() - 1);
+                    let eval = |col: usize, step: f64| -> ContactLoad {
+                        let mut wp = wire;
+                        let mut cj = core_poses[j];
+                        let mut anchor = core_poses[hc];
+                        if col < 6 {
+                            perturb(&mut wp, col, step);
+                        } else {
+                            perturb(&mut cj, col - 6, step);
+                            if hc == j {
+                                anchor = cj;
+                            }
+                        }
+                        contact::evaluate_pair(cp, h, &wp, &cj, j, lj, &anchor)
+                    };
+                    if eval(0, 0.0).state == contact::ContactState::Open {
+                        continue;
+                    }
+                    let step_x = 1e-7 * w.chain.section.radius;
+                    let mut k = SMatrix::<f64, 12, 12>::zeros();
+                    for col in 0..12 {
+                        let hstep = if col % 6 < 3 { step_x } else { 1e-7 };
+                        let lp = eval(col, hstep);
+                        let lm = eval(col, -hstep);
+                        for (blk, (a, b)) in [
+                            (lp.force_wire, lm.force_wire),
+                            (lp.torque_wire, lm.torque_wire),
+                            (lp.force_core, lm.force_core),
+                            (lp.torque_core, lm.torque_core),
+                        ]
+                        .iter()
+                        .enumerate()
+                        {
+                            for r in 0..3 {
+                                k[(3 * blk + r, col)] = -(a[r] - b[r]) / (2.0 * hstep);
+                            }
+                        }
+                    }
+                    out.push(ElementTangent {
+                        segments: [Some(off + cp.segment), Some(j)],
+                        stiffness: k,
+                    });
+                }
+                out
+            })
+            .collect();
+        per_wire.into_iter().flatten().collect()
+    }
+
+    /// Stiffness bounds of every contact as if closed: an isotropic spring of the larger of
+    /// `k_n`, `k_t` between the contact points of the wire and the paired core segment (for
+    /// the stable time step).
+    pub fn contact_bound_tangents(&self, state: &ModelState) -> Vec<ElementTangent> {
+        let offsets = self.segment_offsets();
+        let core = &self.wires[0].chain;
+        let core_poses = &state.wires[0].poses;
+        let mut out = Vec::with_capacity(self.contact_count());
+        for ((w, s), (hist, &off)) in self
+            .wires
+            .iter()
+            .zip(&state.wires)
+            .zip(state.contacts.iter().zip(&offsets))
+        {
+            for (cp, h) in w.contacts.iter().zip(hist) {
+                let wire = &s.poses[cp.segment];
+                let p = wire.point(&cp.offset);
+                let j =
+                    contact::nearest_core_segment(core_poses, &core.segments, &p, h.core_segment);
+                let cj = &core_poses[j];
+                let k = cp.law.normal_stiffness.max(cp.law.tangential_stiffness);
+                // Relative displacement of the contact point: B (dx_w, dw_w, dx_c, dw_c).
+                let skew = |a: Vector3<f64>| a.cross_matrix();
+                let mut b = SMatrix::<f64, 3, 12>::zeros();
+                b.fixed_view_mut::<3, 3>(0, 0)
+                    .copy_from(&Matrix3::identity());
+                b.fixed_view_mut::<3, 3>(0, 3)
+                    .copy_from(&(-skew(p - wire.position)));
+                b.fixed_view_mut::<3, 3>(0, 6)
+                    .copy_from(&(-Matrix3::identity()));
+                b.fixed_view_mut::<3, 3>(0, 9)
+                    .copy_from(&skew(p - cj.position));
+                out.push(ElementTangent {
+                    segments: [Some(off + cp.segment), Some(j)],
+                    stiffness: b.transpose() * b * k,
+                });
+            }
+        }
+        out
+    }
+
+    /// Tangents of the joints and anchors at `state`.
+    pub fn joint_tangents(&self, state: &ModelState) -> Vec<ElementTangent> {
         let offsets = self.segment_offsets();
         let per_wire: Vec<Vec<ElementTangent>> = self
             .wires
