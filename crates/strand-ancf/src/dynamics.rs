@@ -125,6 +125,8 @@ pub struct DynamicSummary {
     pub q: Vec<f64>,
     /// Final velocities.
     pub v: Vec<f64>,
+    /// Final committed slip state of the section law.
+    pub slip: Vec<f64>,
 }
 
 /// Why a dynamic run stopped.
@@ -415,6 +417,7 @@ fn verlet(
         last: en,
         q,
         v,
+        slip,
     })
 }
 
@@ -707,5 +710,6 @@ fn generalized_alpha(
         last: en,
         q: st.q,
         v,
+        slip: st.slip,
     })
 }

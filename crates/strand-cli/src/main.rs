@@ -61,6 +61,19 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Run the models a scene names and write `DIR/<model>/` with summary.json,
+    /// centerline.csv, wires.csv and, for dynamics, tip.csv and energy.csv (SPEC 6).
+    Run {
+        /// Scene file.
+        scene: PathBuf,
+        /// Output folder.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Also write the centreline of every output frame as VTK files (`DIR/<model>/vtk/`),
+        /// a time series that ParaView opens.
+        #[arg(long)]
+        vtk: bool,
+    },
 }
 
 fn main() -> ExitCode {
@@ -84,7 +97,88 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             law,
             json,
         } => section(&scene, strain, curvature, at, law.map(Into::into), json),
+        Command::Run { scene, out, vtk } => run_scene(&scene, out, vtk),
     }
+}
+
+/// A progress bar that shows itself on a terminal once a run has taken more than a second.
+struct Progress {
+    bar: indicatif::ProgressBar,
+    start: std::time::Instant,
+    shown: bool,
+    model: String,
+}
+
+impl Progress {
+    fn new() -> Self {
+        let bar = indicatif::ProgressBar::with_draw_target(
+            Some(1000),
+            indicatif::ProgressDrawTarget::hidden(),
+        );
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{prefix:>12} [{bar:40}] {percent:>3}% {elapsed} (eta {eta})",
+            )
+            .expect("valid template")
+            .progress_chars("=> "),
+        );
+        Progress {
+            bar,
+            start: std::time::Instant::now(),
+            shown: false,
+            model: String::new(),
+        }
+    }
+
+    fn update(&mut self, model: &str, fraction: f64) {
+        if model != self.model {
+            self.model = model.to_string();
+            self.bar.set_prefix(model.to_string());
+            self.bar.reset();
+            self.start = std::time::Instant::now();
+        }
+        if !self.shown && self.start.elapsed().as_secs_f64() > 1.0 {
+            self.bar
+                .set_draw_target(indicatif::ProgressDrawTarget::stderr());
+            self.shown = true;
+        }
+        self.bar
+            .set_position((fraction.clamp(0.0, 1.0) * 1000.0) as u64);
+    }
+}
+
+fn run_scene(path: &std::path::Path, out: PathBuf, vtk: bool) -> anyhow::Result<()> {
+    let scene = Scene::load(path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let mut progress = Progress::new();
+    let opts = strand_scene::RunOptions {
+        out: out.clone(),
+        vtk,
+    };
+    let result = strand_scene::run_scene(&scene, &opts, &mut |m, f| progress.update(m, f));
+    progress.bar.finish_and_clear();
+    let summaries = result?;
+    for s in &summaries {
+        println!(
+            "{:<12} {} law, {} dofs, {} steps, {} Newton iterations, {:.3} s; tip ({:.6}, {:.6}, {:.6}) m{}",
+            s.model,
+            s.law,
+            s.dofs,
+            s.steps,
+            s.newton_iterations,
+            s.wall_time_s,
+            s.tip[0],
+            s.tip[1],
+            s.tip[2],
+            s.energy_balance_error.map_or(String::new(), |e| format!(
+                "; energy balance error {e:.3e} J"
+            )),
+        );
+        for w in &s.warnings {
+            println!("{:<12} warning: {w}", "");
+        }
+    }
+    println!("results in {}", out.display());
+    Ok(())
 }
 
 fn section(

@@ -1,10 +1,14 @@
 //! Scene files of `strand` (SPEC 6): the JSON format ([`mod@format`]), its validation into a
-//! [`Scene`] with errors that carry the JSON path of the fault, shared by the `strand` command
-//! and the validation harness.
+//! [`Scene`] with errors that carry the JSON path of the fault, and the runner ([`run_scene`])
+//! that builds and runs the models and writes the result files ([`output`]); shared by the
+//! `strand` command and the validation harness.
 
 pub mod format;
+pub mod output;
+mod run;
 mod scene;
 
+pub use run::{RunError, RunOptions, RunSummary, run_scene};
 pub use scene::{
     Analysis, BeamModel, Dynamic, End, FineModel, IntegratorKind, MEMORY_LIMIT, Models, Scene,
     SceneError, Support, SupportKind,

@@ -1,0 +1,458 @@
+//! The scene runner shared by `strand run` and the validation harness: builds the models a
+//! scene names, runs its analysis, and writes `DIR/<model>/` with the files of SPEC 6.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use serde::Serialize;
+use strand_ancf::beam::{Beam, BeamSpec, PointState, Support as BeamSupport};
+use strand_ancf::dynamics::{DynamicOptions, Scheme, run_dynamic};
+use strand_ancf::statics::{StaticOptions, solve_static};
+use strand_core::{LawKind, SectionLaw, WireState};
+
+use crate::output::{Csv, number, write_vtk_polyline};
+use crate::scene::{Analysis, BeamModel, End, IntegratorKind, Scene, SupportKind};
+
+/// Options of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunOptions {
+    /// Output folder; each model writes into a sub-folder named after it.
+    pub out: PathBuf,
+    /// Also write the centreline of every output frame as VTK polylines.
+    pub vtk: bool,
+}
+
+/// What `summary.json` holds.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct RunSummary {
+    /// Scene name.
+    pub scene: String,
+    /// Model: `equivalent`, `traditional` or `fine`.
+    pub model: String,
+    /// Section law.
+    pub law: String,
+    /// `static` or `dynamic`.
+    pub analysis: String,
+    /// `ok`, or `failed` with `error` set (the files hold what was computed until then).
+    pub status: String,
+    /// Why the run failed.
+    pub error: Option<String>,
+    /// Degrees of freedom.
+    pub dofs: usize,
+    /// Elements.
+    pub elements: usize,
+    /// Bending integration points per element.
+    pub integration_points: usize,
+    /// Load steps (statics) or time steps (dynamics).
+    pub steps: usize,
+    /// Newton iterations in total.
+    pub newton_iterations: usize,
+    /// Wall time of the solve (s).
+    pub wall_time_s: f64,
+    /// Tip position at the end (m).
+    pub tip: [f64; 3],
+    /// Time step (s, dynamics).
+    pub time_step: Option<f64>,
+    /// Estimated stable step of the explicit integrator (s, dynamics).
+    pub stable_time_step: Option<f64>,
+    /// Largest |kinetic + gravity + elastic + dissipated - initial| (J, dynamics).
+    pub energy_balance_error: Option<f64>,
+    /// The balance error relative to the largest kinetic energy (dynamics).
+    pub energy_balance_relative: Option<f64>,
+    /// Work dissipated at the end (J, dynamics).
+    pub dissipated: Option<f64>,
+    /// What was built for this run.
+    pub built: Vec<String>,
+    /// Warnings.
+    pub warnings: Vec<String>,
+}
+
+/// Why a run could not start or write its results.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// The scene asks for something this version cannot build.
+    #[error("{0}")]
+    Unsupported(String),
+    /// A model could not be built.
+    #[error("{model}: {message}")]
+    Setup {
+        /// Model name.
+        model: String,
+        /// What failed.
+        message: String,
+    },
+    /// The solver stopped; the files hold what was computed.
+    #[error("{model}: {message} (results so far in {dir})")]
+    Solve {
+        /// Model name.
+        model: String,
+        /// What failed.
+        message: String,
+        /// Where the partial results are.
+        dir: String,
+    },
+    /// Writing results failed.
+    #[error("writing {path}: {source}")]
+    Io {
+        /// File.
+        path: String,
+        /// Cause.
+        source: std::io::Error,
+    },
+}
+
+fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> RunError + '_ {
+    move |source| RunError::Io {
+        path: path.display().to_string(),
+        source,
+    }
+}
+
+/// Runs every model `scene` names and writes their results below `opts.out`. `progress`
+/// receives (model, fraction done). Returns one summary per model run.
+pub fn run_scene(
+    scene: &Scene,
+    opts: &RunOptions,
+    progress: &mut dyn FnMut(&str, f64),
+) -> Result<Vec<RunSummary>, RunError> {
+    if !scene.is_planar() {
+        return Err(RunError::Unsupported(
+            "this scene leaves the XY plane (initial.direction or loads.gravity has a Z \
+             component); this version runs planar scenes only"
+                .into(),
+        ));
+    }
+    let mut out = Vec::new();
+    let models: [(&str, Option<&BeamModel>, LawKind); 2] = [
+        ("equivalent", scene.models.equivalent.as_ref(), scene.law),
+        (
+            "traditional",
+            scene.models.traditional.as_ref(),
+            LawKind::Constant,
+        ),
+    ];
+    for (name, model, law) in models {
+        if let Some(m) = model {
+            out.push(run_beam(scene, name, m, law, opts, progress)?);
+        }
+    }
+    if scene.models.fine.is_some() {
+        eprintln!(
+            "warning: the scene names the fine model, which `strand run` cannot run yet; skipped"
+        );
+    }
+    Ok(out)
+}
+
+fn beam_support(scene: &Scene, end: End) -> Option<BeamSupport> {
+    scene
+        .supports
+        .iter()
+        .find(|s| s.at == end)
+        .map(|s| match s.kind {
+            SupportKind::Clamped => BeamSupport::Clamped,
+            SupportKind::Pinned => BeamSupport::Pinned,
+        })
+}
+
+fn run_beam(
+    scene: &Scene,
+    name: &str,
+    model: &BeamModel,
+    kind: LawKind,
+    opts: &RunOptions,
+    progress: &mut dyn FnMut(&str, f64),
+) -> Result<RunSummary, RunError> {
+    let strand = &scene.strand;
+    let setup = |message: String| RunError::Setup {
+        model: name.to_string(),
+        message,
+    };
+    let law = SectionLaw::new(strand, kind);
+    let mass = model.mass_per_length.unwrap_or(strand.mass_per_length());
+    let d = scene.direction;
+    let n = (d[0] * d[0] + d[1] * d[1]).sqrt();
+    let spec = BeamSpec {
+        elements: model.elements,
+        bending_points: model.integration_points,
+        mass_per_length: mass,
+        direction: [d[0] / n, d[1] / n],
+        gravity: [scene.gravity[0], scene.gravity[1]],
+        start: beam_support(scene, End::Start),
+        end: beam_support(scene, End::End),
+    };
+    let beam = Beam::new(spec, law.clone()).map_err(|e| setup(e.to_string()))?;
+    let dir = opts.out.join(name);
+    std::fs::create_dir_all(&dir).map_err(io_err(&dir))?;
+    let mut built = vec![
+        format!(
+            "planar ANCF cable beam, {} elements of {:.4e} m, {} bending points and 2 axial points per element",
+            model.elements,
+            beam.element_length(),
+            beam.bending_points()
+        ),
+        format!("section law `{kind}`"),
+    ];
+    if law.sliders() > 0 {
+        built.push(format!(
+            "{} friction sliders per bending point",
+            law.sliders()
+        ));
+    }
+    let mut summary = RunSummary {
+        scene: scene.name.clone(),
+        model: name.to_string(),
+        law: kind.name().to_string(),
+        analysis: String::new(),
+        status: "ok".into(),
+        error: None,
+        dofs: beam.dofs(),
+        elements: model.elements,
+        integration_points: beam.bending_points(),
+        steps: 0,
+        newton_iterations: 0,
+        wall_time_s: 0.0,
+        tip: [f64::NAN; 3],
+        time_step: None,
+        stable_time_step: None,
+        energy_balance_error: None,
+        energy_balance_relative: None,
+        dissipated: None,
+        built,
+        warnings: Vec::new(),
+    };
+    if kind == LawKind::Paper {
+        summary.warnings.push(
+            "the `paper` law's moment drops at each switch (non-monotone, eq. (23)); Newton may \
+             fail to converge"
+                .into(),
+        );
+    }
+    let result = match scene.analysis {
+        Analysis::Static { load_steps } => {
+            summary.analysis = "static".into();
+            run_static(&beam, load_steps, &dir, &mut summary, &mut |f| {
+                progress(name, f)
+            })
+        }
+        Analysis::Dynamic(dy) => {
+            summary.analysis = "dynamic".into();
+            if matches!(kind, LawKind::Continuous | LawKind::Paper) {
+                summary.warnings.push(format!(
+                    "the `{kind}` law is not a potential (its moment depends on the tension): in \
+                     dynamics its non-potential work can feed energy into axial-bending \
+                     vibrations; `hysteretic` is the energetically consistent law"
+                ));
+            }
+            let scheme = match dy.integrator {
+                IntegratorKind::Verlet => Scheme::Verlet { step: dy.time_step },
+                IntegratorKind::GeneralizedAlpha => Scheme::GeneralizedAlpha {
+                    step: dy
+                        .time_step
+                        .expect("validated: generalized-alpha has a step"),
+                    spectral_radius: dy.spectral_radius,
+                },
+            };
+            let o = DynamicOptions::new(dy.duration, scheme, dy.output_interval);
+            run_dynamics(&beam, &o, &dir, opts.vtk, &mut summary, &mut |f| {
+                progress(name, f)
+            })
+        }
+    };
+    if let Err(message) = &result {
+        summary.status = "failed".into();
+        summary.error = Some(message.clone());
+    }
+    let path = dir.join("summary.json");
+    let text = serde_json::to_string_pretty(&summary).expect("summary serializes");
+    std::fs::write(&path, text + "\n").map_err(io_err(&path))?;
+    match result {
+        Ok(()) => Ok(summary),
+        Err(message) => Err(RunError::Solve {
+            model: name.to_string(),
+            message,
+            dir: dir.display().to_string(),
+        }),
+    }
+}
+
+/// Writes `centerline.csv` and `wires.csv` for the state `(q, slip, points)`.
+fn write_state(
+    beam: &Beam,
+    q: &[f64],
+    slip: &[f64],
+    points: &[PointState],
+    dir: &Path,
+) -> Result<(), String> {
+    let law = beam.law();
+    let ea = law.axial_stiffness();
+    let w = law.state_len();
+    let p = dir.join("centerline.csv");
+    let e = |e: std::io::Error| format!("writing {}: {e}", p.display());
+    let mut c = Csv::create(
+        &p,
+        &[
+            "s",
+            "x",
+            "y",
+            "z",
+            "curvature",
+            "tension",
+            "bending_stiffness",
+        ],
+    )
+    .map_err(e)?;
+    let pw = dir.join("wires.csv");
+    let ew = |e: std::io::Error| format!("writing {}: {e}", pw.display());
+    let mut wires =
+        Csv::create(&pw, &["s", "wire", "phase", "critical_curvature", "state"]).map_err(ew)?;
+    for (i, pt) in points.iter().enumerate() {
+        let (r, _) = beam.sample(q, pt.x);
+        let st = law.station(pt.x);
+        let sl = if w > 0 {
+            &slip[i * w..(i + 1) * w]
+        } else {
+            &slip[..0]
+        };
+        let secant = law.planar_secant(&st, pt.eps, pt.kappa, sl);
+        c.row(&[pt.x, r.x, r.y, 0.0, pt.kappa, ea * pt.eps, secant])
+            .map_err(e)?;
+        for wr in law.planar_wires(&st, pt.eps, pt.kappa, sl) {
+            let crit = wr
+                .critical_curvature
+                .map_or("inf".to_string(), |v| v.to_string());
+            let state = match wr.state {
+                WireState::Stick => "stick",
+                WireState::Slip => "slip",
+            };
+            wires
+                .text_row(&[
+                    number(pt.x),
+                    wr.wire.to_string(),
+                    number(wr.phase),
+                    crit,
+                    state.to_string(),
+                ])
+                .map_err(ew)?;
+        }
+    }
+    c.finish().map_err(e)?;
+    wires.finish().map_err(ew)
+}
+
+fn tip_of(beam: &Beam, q: &[f64]) -> [f64; 3] {
+    let (r, _) = beam.sample(q, beam.length());
+    [r.x, r.y, 0.0]
+}
+
+fn run_static(
+    beam: &Beam,
+    load_steps: usize,
+    dir: &Path,
+    summary: &mut RunSummary,
+    progress: &mut dyn FnMut(f64),
+) -> Result<(), String> {
+    let opts = StaticOptions {
+        load_steps,
+        ..StaticOptions::default()
+    };
+    let t0 = Instant::now();
+    let sol = solve_static(beam, &opts, progress);
+    summary.wall_time_s = t0.elapsed().as_secs_f64();
+    let sol = sol.map_err(|e| e.to_string())?;
+    summary.steps = sol.steps;
+    summary.newton_iterations = sol.iterations;
+    summary.tip = tip_of(beam, &sol.q);
+    if sol.cuts > 0 {
+        summary
+            .warnings
+            .push(format!("{} load steps were cut and retried", sol.cuts));
+    }
+    write_state(beam, &sol.q, &sol.slip, &sol.points, dir)
+}
+
+fn run_dynamics(
+    beam: &Beam,
+    opts: &DynamicOptions,
+    dir: &Path,
+    vtk: bool,
+    summary: &mut RunSummary,
+    progress: &mut dyn FnMut(f64),
+) -> Result<(), String> {
+    let io = |p: &Path| {
+        let p = p.display().to_string();
+        move |e: std::io::Error| format!("writing {p}: {e}")
+    };
+    let pt = dir.join("tip.csv");
+    let mut tip = Csv::create(&pt, &["t", "x", "y", "z", "vx", "vy", "vz"]).map_err(io(&pt))?;
+    let pe = dir.join("energy.csv");
+    let mut energy = Csv::create(
+        &pe,
+        &["t", "kinetic", "gravity", "elastic", "dissipated", "total"],
+    )
+    .map_err(io(&pe))?;
+    let vtk_dir = dir.join("vtk");
+    if vtk {
+        std::fs::create_dir_all(&vtk_dir).map_err(io(&vtk_dir))?;
+    }
+    let n = beam.spec().elements;
+    let k = n * strand_ancf::beam::NODE_COORDS;
+    let mut frame = 0usize;
+    let mut write_error: Option<String> = None;
+    let mut last_q = beam.reference().to_vec();
+    let mut last_points: Vec<PointState> = Vec::new();
+    let t0 = Instant::now();
+    let result = run_dynamic(beam, opts, &mut |f| {
+        if write_error.is_some() {
+            return;
+        }
+        let e = &f.energies;
+        let mut rows = || -> std::io::Result<()> {
+            tip.row(&[f.t, f.q[k], f.q[k + 1], 0.0, f.v[k], f.v[k + 1], 0.0])?;
+            energy.row(&[
+                f.t,
+                e.kinetic,
+                e.gravity,
+                e.elastic,
+                e.dissipated,
+                e.total(),
+            ])?;
+            if vtk {
+                let samples = 4 * n;
+                let pts: Vec<[f64; 3]> = (0..=samples)
+                    .map(|i| {
+                        let (r, _) = beam.sample(f.q, beam.length() * i as f64 / samples as f64);
+                        [r.x, r.y, 0.0]
+                    })
+                    .collect();
+                let path = vtk_dir.join(format!("centerline_{frame:05}.vtk"));
+                write_vtk_polyline(&path, &format!("t = {} s", f.t), &pts, &[])?;
+            }
+            Ok(())
+        };
+        if let Err(err) = rows() {
+            write_error = Some(format!("writing results: {err}"));
+        }
+        frame += 1;
+        last_q.copy_from_slice(f.q);
+        last_points.clear();
+        last_points.extend_from_slice(f.points);
+        progress(f.t / opts.duration);
+    });
+    summary.wall_time_s = t0.elapsed().as_secs_f64();
+    tip.finish().map_err(io(&pt))?;
+    energy.finish().map_err(io(&pe))?;
+    if let Some(e) = write_error {
+        return Err(e);
+    }
+    summary.tip = tip_of(beam, &last_q);
+    let s = result.map_err(|e| e.to_string())?;
+    summary.steps = s.steps;
+    summary.newton_iterations = s.newton_iterations;
+    summary.time_step = Some(s.time_step);
+    summary.stable_time_step = Some(s.stable_step);
+    summary.energy_balance_error = Some(s.balance_error);
+    summary.energy_balance_relative = Some(s.balance_error / s.max_kinetic.max(f64::MIN_POSITIVE));
+    summary.dissipated = Some(s.last.dissipated);
+    write_state(beam, &s.q, &s.slip, &last_points, dir)
+}
