@@ -1,5 +1,5 @@
-//! The equivalent strand beam: a mesh of planar cable elements carrying a section law, with
-//! supports eliminated, its constant mass matrix (eq. (44)), gravity load (eq. (45)) and the
+//! The equivalent strand beam: a mesh of cable elements, planar (4 coordinates per node) or
+//! spatial (6, eq. (24)), carrying a section law, with supports eliminated, its constant mass matrix (eq. (44)), gravity load (eq. (45)) and the
 //! assembly of the generalized elastic forces (eq. (28)) and their analytic tangent.
 //!
 //! # Quadrature
@@ -16,15 +16,28 @@
 //!   on each of `ceil(4 l / P)` equal sub-intervals (a sub-interval spans at most a quarter
 //!   pitch). Laws without wires use 4 Gauss points. A scene can ask for n Gauss points instead.
 
-use nalgebra::{Vector2, Vector4};
+use nalgebra::{DMatrix, Vector2, Vector3, Vector4};
 use strand_core::{SectionLaw, Station};
 
 use crate::band::BandMatrix;
 use crate::error::AncfError;
-use crate::load::planar_gravity;
-use crate::mass::planar_mass;
+use crate::load::{planar_gravity, spatial_gravity};
+use crate::mass::{planar_mass, spatial_mass};
 use crate::planar::{self, PlanarCoords, PlanarMatrix, PlanarPoint, PlanarSection, PlanarVector};
 use crate::shape::{QuadraturePoint, ShapeRow, element_quadrature, gauss_legendre};
+use crate::spatial::{
+    self, SectionFrame, SpatialCoords, SpatialMatrix, SpatialPoint, SpatialSection, SpatialVector,
+};
+
+/// Which cable element a beam uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ElementKind {
+    /// Planar element in the XY plane: (r_x, r_y, r'_x, r'_y) per node.
+    Planar,
+    /// Spatial element: (r, r') per node (eq. (24)); curvature components in the section
+    /// frame carried by the minimal rotation from the straight strand's frame.
+    Spatial,
+}
 
 /// How an end of the beam is held.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -44,10 +57,12 @@ pub struct BeamSpec {
     pub bending_points: Option<usize>,
     /// Mass per length (kg/m).
     pub mass_per_length: f64,
-    /// Unit direction of the straight initial strand in the XY plane.
-    pub direction: [f64; 2],
-    /// Gravitational acceleration in the XY plane (m/s^2).
-    pub gravity: [f64; 2],
+    /// Element kind.
+    pub element: ElementKind,
+    /// Unit direction of the straight initial strand (in the XY plane for planar elements).
+    pub direction: [f64; 3],
+    /// Gravitational acceleration (m/s^2; in the XY plane for planar elements).
+    pub gravity: [f64; 3],
     /// Support at x = 0.
     pub start: Option<Support>,
     /// Support at x = L.
@@ -104,8 +119,10 @@ pub struct PointState {
     pub x: f64,
     /// Assumed axial strain.
     pub eps: f64,
-    /// Signed curvature (1/m).
+    /// Curvature `kappa_z` (1/m): the signed curvature of a planar element.
     pub kappa: f64,
+    /// Curvature `kappa_y` (1/m): zero for a planar element.
+    pub kappa_y: f64,
     /// Bending moment (N m).
     pub moment: f64,
     /// d(stored energy)/d eps at fixed curvature (J/m), see `SectionResponse::energy_strain`.
@@ -142,10 +159,11 @@ pub struct Beam {
     gravity_force: Vec<f64>,
     mass: BandMatrix,
     wires: usize,
+    /// Coordinates per node.
+    nd: usize,
+    /// Section frame of the straight strand (spatial element).
+    frame: Option<SectionFrame>,
 }
-
-/// Coordinates per node of the planar element: (r_x, r_y, r'_x, r'_y).
-pub const NODE_COORDS: usize = 4;
 
 /// Gauss points of the reduced axial quadrature.
 pub const AXIAL_POINTS: usize = 2;
@@ -159,23 +177,43 @@ impl Beam {
         }
         let length = law.strand().length();
         let l = length / n as f64;
-        let nd = NODE_COORDS;
-        let n_glob = (n + 1) * nd;
-        let d = Vector2::from(spec.direction);
+        let d = Vector3::from(spec.direction);
         if (d.norm() - 1.0).abs() > 1e-12 {
             return Err(BeamError::Setup("direction must be a unit vector".into()));
         }
+        let (nd, frame) = match spec.element {
+            ElementKind::Planar => {
+                if d.z != 0.0 || spec.gravity[2] != 0.0 {
+                    return Err(BeamError::Setup(
+                        "a planar beam needs its direction and gravity in the XY plane".into(),
+                    ));
+                }
+                (4, None)
+            }
+            ElementKind::Spatial => (
+                6,
+                Some(
+                    SectionFrame::along(d)
+                        .map_err(|source| BeamError::Kinematics { element: 0, source })?,
+                ),
+            ),
+        };
+        let dim = nd / 2;
+        let n_glob = (n + 1) * nd;
         let mut q_ref = vec![0.0; n_glob];
         for j in 0..=n {
             let x = j as f64 * l;
-            q_ref[j * nd..j * nd + 4].copy_from_slice(&[x * d.x, x * d.y, d.x, d.y]);
+            for c in 0..dim {
+                q_ref[j * nd + c] = x * d[c];
+                q_ref[j * nd + dim + c] = d[c];
+            }
         }
         let mut fixed = vec![false; n_glob];
         for (node, s) in [(0, spec.start), (n, spec.end)] {
             let count = match s {
                 None => 0,
-                Some(Support::Pinned) => 2,
-                Some(Support::Clamped) => 4,
+                Some(Support::Pinned) => dim,
+                Some(Support::Clamped) => nd,
             };
             for k in 0..count {
                 fixed[node * nd + k] = true;
@@ -197,9 +235,21 @@ impl Beam {
         // Mass (free block) and gravity.
         let band = 2 * nd - 1;
         let mut mass = BandMatrix::zeros(n_free, band, band);
-        let me = planar_mass(spec.mass_per_length, l);
-        let g = Vector2::from(spec.gravity);
-        let fe = planar_gravity(spec.mass_per_length, &g, l);
+        let me = element_mass(spec.element, spec.mass_per_length, l);
+        let fe: Vec<f64> = match spec.element {
+            ElementKind::Planar => {
+                let g = Vector2::new(spec.gravity[0], spec.gravity[1]);
+                planar_gravity(spec.mass_per_length, &g, l)
+                    .as_slice()
+                    .to_vec()
+            }
+            ElementKind::Spatial => {
+                let g = Vector3::from(spec.gravity);
+                spatial_gravity(spec.mass_per_length, &g, l)
+                    .as_slice()
+                    .to_vec()
+            }
+        };
         let mut gravity_force = vec![0.0; n_glob];
         for e in 0..n {
             for a in 0..2 * nd {
@@ -225,6 +275,8 @@ impl Beam {
             gravity_force,
             mass,
             wires,
+            nd,
+            frame,
         })
     }
 
@@ -270,7 +322,19 @@ impl Beam {
     }
     /// Half-bandwidth of the free system.
     pub fn bandwidth(&self) -> usize {
-        2 * NODE_COORDS - 1
+        2 * self.nd - 1
+    }
+    /// Coordinates per node: 4 (planar) or 6 (spatial).
+    pub fn node_coords(&self) -> usize {
+        self.nd
+    }
+    /// Consistent mass matrix of one element (eq. (44)).
+    pub fn element_mass(&self) -> DMatrix<f64> {
+        element_mass(
+            self.spec.element,
+            self.spec.mass_per_length,
+            self.element_length,
+        )
     }
     /// Bending points per element.
     pub fn bending_points(&self) -> usize {
@@ -289,18 +353,32 @@ impl Beam {
         }
     }
 
-    /// Coordinates of element `e` from the global vector.
-    pub fn element_coords(&self, q: &[f64], e: usize) -> PlanarCoords {
-        PlanarCoords::from_column_slice(&q[e * NODE_COORDS..e * NODE_COORDS + 2 * NODE_COORDS])
+    fn planar_coords(&self, q: &[f64], e: usize) -> PlanarCoords {
+        PlanarCoords::from_column_slice(&q[e * 4..e * 4 + 8])
     }
 
-    /// Position and slope at material coordinate `x` (m).
-    pub fn sample(&self, q: &[f64], x: f64) -> (Vector2<f64>, Vector2<f64>) {
+    fn spatial_coords(&self, q: &[f64], e: usize) -> SpatialCoords {
+        SpatialCoords::from_column_slice(&q[e * 6..e * 6 + 12])
+    }
+
+    /// Position and slope `r'` at material coordinate `x` (m), as 3-vectors.
+    pub fn sample(&self, q: &[f64], x: f64) -> ([f64; 3], [f64; 3]) {
         let e = ((x / self.element_length) as usize).min(self.spec.elements - 1);
         let row = ShapeRow::new(x - e as f64 * self.element_length, self.element_length);
-        let qe = self.element_coords(q, e);
-        let p = PlanarPoint::at(&qe, &row);
-        (planar::position(&qe, &row), p.dr)
+        match self.spec.element {
+            ElementKind::Planar => {
+                let qe = self.planar_coords(q, e);
+                let r = planar::position(&qe, &row);
+                let p = PlanarPoint::at(&qe, &row);
+                ([r.x, r.y, 0.0], [p.dr.x, p.dr.y, 0.0])
+            }
+            ElementKind::Spatial => {
+                let qe = self.spatial_coords(q, e);
+                let r = spatial::position(&qe, &row);
+                let p = SpatialPoint::at(&qe, &row);
+                (r.into(), p.dr.into())
+            }
+        }
     }
 
     /// Evaluates the generalized elastic forces `Q_e` (eq. (28)) into `force` (all
@@ -320,45 +398,58 @@ impl Beam {
         if let Some(t) = tangent.as_deref_mut() {
             t.fill_zero();
         }
-        let nd = NODE_COORDS;
+        let nd = self.nd;
         let ws = if self.law.kind().has_state() {
             self.wires
         } else {
             0
         };
         let mut sum = Evaluation::default();
-        let mut k_e = PlanarMatrix::zeros();
+        let mut kp = PlanarMatrix::zeros();
+        let mut ks = SpatialMatrix::zeros();
         let mut p0 = 0;
         for (e, rule) in self.rules.iter().enumerate() {
-            let qe = self.element_coords(q, e);
             let np = rule.bend.len();
             let (s0, s1) = (p0 * ws, (p0 + np) * ws);
-            let tl = trial.len();
+            let (sl, tl) = (slip.len(), trial.len());
+            let sl = &slip[s0.min(sl)..s1.min(sl)];
+            let tr = &mut trial[s0.min(tl)..s1.min(tl)];
             let pts = points.as_deref_mut().map(|p| &mut p[p0..p0 + np]);
-            let (f_e, ev) = self.element(
-                e,
-                rule,
-                &qe,
-                &slip[s0.min(slip.len())..s1.min(slip.len())],
-                &mut trial[s0.min(tl)..s1.min(tl)],
-                tangent.is_some().then_some(&mut k_e),
-                pts,
-            )?;
+            let want_k = tangent.is_some();
+            let (ke, ev): (&[f64], Evaluation) = match self.spec.element {
+                ElementKind::Planar => {
+                    let qe = self.planar_coords(q, e);
+                    let (f, ev) =
+                        self.element_planar(e, rule, &qe, sl, tr, want_k.then_some(&mut kp), pts)?;
+                    for a in 0..8 {
+                        force[e * nd + a] += f[a];
+                    }
+                    (kp.as_slice(), ev)
+                }
+                ElementKind::Spatial => {
+                    let qe = self.spatial_coords(q, e);
+                    let (f, ev) =
+                        self.element_spatial(e, rule, &qe, sl, tr, want_k.then_some(&mut ks), pts)?;
+                    for a in 0..12 {
+                        force[e * nd + a] += f[a];
+                    }
+                    (ks.as_slice(), ev)
+                }
+            };
             p0 += np;
             sum.energy += ev.energy;
             sum.slip_work += ev.slip_work;
             sum.slipping += ev.slipping;
-            for a in 0..2 * nd {
-                force[e * nd + a] += f_e[a];
-            }
             if let Some(t) = tangent.as_deref_mut() {
-                for a in 0..2 * nd {
-                    let Some(ia) = self.free_index[e * nd + a] else {
+                // Element matrices are column-major, 2 nd x 2 nd.
+                let m = 2 * nd;
+                for b in 0..m {
+                    let Some(ib) = self.free_index[e * nd + b] else {
                         continue;
                     };
-                    for b in 0..2 * nd {
-                        if let Some(ib) = self.free_index[e * nd + b] {
-                            t.add(ia, ib, k_e[(a, b)]);
+                    for a in 0..m {
+                        if let Some(ia) = self.free_index[e * nd + a] {
+                            t.add(ia, ib, ke[a + b * m]);
                         }
                     }
                 }
@@ -369,7 +460,7 @@ impl Beam {
 
     /// Tangent of element `e` alone at coordinates `q`, from a state without slip (for the
     /// stable-step bound).
-    pub(crate) fn element_tangent(&self, e: usize, q: &[f64]) -> Result<PlanarMatrix, BeamError> {
+    pub(crate) fn element_tangent(&self, e: usize, q: &[f64]) -> Result<DMatrix<f64>, BeamError> {
         let rule = &self.rules[e];
         let ws = if self.law.kind().has_state() {
             self.wires
@@ -378,22 +469,25 @@ impl Beam {
         };
         let slip = vec![0.0; rule.bend.len() * ws];
         let mut trial = slip.clone();
-        let mut k = PlanarMatrix::zeros();
-        self.element(
-            e,
-            rule,
-            &self.element_coords(q, e),
-            &slip,
-            &mut trial,
-            Some(&mut k),
-            None,
-        )?;
-        Ok(k)
+        Ok(match self.spec.element {
+            ElementKind::Planar => {
+                let mut k = PlanarMatrix::zeros();
+                let qe = self.planar_coords(q, e);
+                self.element_planar(e, rule, &qe, &slip, &mut trial, Some(&mut k), None)?;
+                DMatrix::from_column_slice(8, 8, k.as_slice())
+            }
+            ElementKind::Spatial => {
+                let mut k = SpatialMatrix::zeros();
+                let qe = self.spatial_coords(q, e);
+                self.element_spatial(e, rule, &qe, &slip, &mut trial, Some(&mut k), None)?;
+                DMatrix::from_column_slice(12, 12, k.as_slice())
+            }
+        })
     }
 
-    /// Forces (and tangent) of one element.
+    /// Forces (and tangent) of one planar element.
     #[allow(clippy::too_many_arguments)]
-    fn element(
+    fn element_planar(
         &self,
         e: usize,
         rule: &ElementRule,
@@ -496,6 +590,7 @@ impl Beam {
                     x: bp.station.x,
                     eps,
                     kappa,
+                    kappa_y: 0.0,
                     moment: r.moment,
                     energy_strain: r.energy_strain,
                     weight: w,
@@ -511,6 +606,143 @@ impl Beam {
             });
         }
         Ok((f, ev))
+    }
+}
+
+impl Beam {
+    /// Forces (and tangent) of one spatial element: as [`Beam::element_planar`] with the
+    /// curvature vector `(kappa_y, kappa_z)` in the carried section frame and the vector form
+    /// of the section law.
+    #[allow(clippy::too_many_arguments)]
+    fn element_spatial(
+        &self,
+        e: usize,
+        rule: &ElementRule,
+        qe: &SpatialCoords,
+        slip: &[f64],
+        trial: &mut [f64],
+        mut tangent: Option<&mut SpatialMatrix>,
+        mut points: Option<&mut [PointState]>,
+    ) -> Result<(SpatialVector, Evaluation), BeamError> {
+        let kin = |source| BeamError::Kinematics { element: e, source };
+        let frame = self.frame.as_ref().expect("spatial beams have a frame");
+        let ea = self.law.axial_stiffness();
+        let mut f = SpatialVector::zeros();
+        if let Some(t) = tangent.as_deref_mut() {
+            t.fill(0.0);
+        }
+        let mut ev = Evaluation::default();
+        let mut eps_a = [0.0; AXIAL_POINTS];
+        let mut eps_q = [SpatialVector::zeros(); AXIAL_POINTS];
+        for (j, ap) in rule.axial.iter().enumerate() {
+            let pt = SpatialPoint::at(qe, &ap.row);
+            let sec = |eps: f64| SpatialSection {
+                n: ea * eps,
+                dn_deps: ea,
+                ..Default::default()
+            };
+            if let Some(t) = tangent.as_deref_mut() {
+                let s2 = pt.second(frame).map_err(kin)?;
+                let s = sec(s2.first.eps);
+                eps_a[j] = s2.first.eps;
+                spatial::add_gradient(&mut f, ap.weight, &ap.row, &s2.force(&s));
+                spatial::add_hessian(t, ap.weight, &ap.row, &s2.tangent(&s));
+                eps_q[j] = spatial::scatter_gradient(&ap.row, &s2.first.eps_grad);
+            } else {
+                let s1 = pt.first(frame).map_err(kin)?;
+                eps_a[j] = s1.eps;
+                spatial::add_gradient(&mut f, ap.weight, &ap.row, &s1.force(&sec(s1.eps)));
+            }
+            ev.energy += ap.weight * 0.5 * ea * eps_a[j] * eps_a[j];
+        }
+        let ws = if self.law.kind().has_state() {
+            self.wires
+        } else {
+            0
+        };
+        for (i, bp) in rule.bend.iter().enumerate() {
+            let eps: f64 = (0..AXIAL_POINTS).map(|j| bp.interp[j] * eps_a[j]).sum();
+            let pt = SpatialPoint::at(qe, &bp.qp.row);
+            let (sl, tr) = if ws > 0 {
+                (
+                    &slip[i * ws..(i + 1) * ws],
+                    &mut trial[i * ws..(i + 1) * ws],
+                )
+            } else {
+                (&slip[..0], &mut trial[..0])
+            };
+            let w = bp.qp.weight;
+            let kappa;
+            let r;
+            if let Some(t) = tangent.as_deref_mut() {
+                let s2 = pt.second(frame).map_err(kin)?;
+                kappa = s2.first.kappa;
+                r = self.law.vector(&bp.station, eps, kappa, sl, tr);
+                let sec = SpatialSection {
+                    m: r.moment,
+                    dm_dkappa: r.moment_curvature,
+                    ..Default::default()
+                };
+                spatial::add_gradient(&mut f, w, &bp.qp.row, &s2.force(&sec));
+                spatial::add_hessian(t, w, &bp.qp.row, &s2.tangent(&sec));
+                if r.moment_strain != [0.0; 2] {
+                    let mut ge = SpatialVector::zeros();
+                    for j in 0..AXIAL_POINTS {
+                        ge += eps_q[j] * bp.interp[j];
+                    }
+                    for a in 0..2 {
+                        let gk = spatial::scatter_gradient(&bp.qp.row, &s2.first.kappa_grad[a]);
+                        t.ger(w * r.moment_strain[a], &gk, &ge, 1.0);
+                    }
+                }
+            } else {
+                let s1 = pt.first(frame).map_err(kin)?;
+                kappa = s1.kappa;
+                r = self.law.vector(&bp.station, eps, kappa, sl, tr);
+                let local = s1.kappa_grad[0] * r.moment[0] + s1.kappa_grad[1] * r.moment[1];
+                spatial::add_gradient(&mut f, w, &bp.qp.row, &local);
+            }
+            if !(r.moment.iter().all(|m| m.is_finite())
+                && r.moment_curvature.iter().flatten().all(|m| m.is_finite()))
+            {
+                return Err(BeamError::NonFinite {
+                    element: e,
+                    x: bp.station.x,
+                    quantity: "bending moment",
+                });
+            }
+            ev.energy += w * (r.energy - 0.5 * ea * eps * eps);
+            ev.slip_work += w * r.slip_work;
+            ev.slipping += r.slipping;
+            if let Some(p) = points.as_deref_mut() {
+                p[i] = PointState {
+                    x: bp.station.x,
+                    eps,
+                    kappa: kappa[1],
+                    kappa_y: kappa[0],
+                    moment: r.moment[1],
+                    energy_strain: r.energy_strain,
+                    weight: w,
+                    slipping: r.slipping,
+                };
+            }
+        }
+        if !f.iter().all(|v| v.is_finite()) {
+            return Err(BeamError::NonFinite {
+                element: e,
+                x: (e as f64 + 0.5) * self.element_length,
+                quantity: "elastic force",
+            });
+        }
+        Ok((f, ev))
+    }
+}
+
+/// Consistent mass matrix of one element of `kind` (eq. (44)).
+fn element_mass(kind: ElementKind, mu: f64, l: f64) -> DMatrix<f64> {
+    match kind {
+        ElementKind::Planar => DMatrix::from_column_slice(8, 8, planar_mass(mu, l).as_slice()),
+        ElementKind::Spatial => DMatrix::from_column_slice(12, 12, spatial_mass(mu, l).as_slice()),
     }
 }
 

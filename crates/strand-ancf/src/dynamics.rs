@@ -14,11 +14,10 @@
 //! point (midpoint rule over each accepted step). Their sum stays at its initial value up to
 //! the integrator's own error, which is reported as the balance error.
 
-use nalgebra::{SMatrix, SymmetricEigen};
+use nalgebra::SymmetricEigen;
 
 use crate::band::{BandMatrix, BandSolver};
 use crate::beam::{Beam, BeamError, PointState};
-use crate::mass::planar_mass;
 use crate::statics::{add_free, gather_free};
 
 /// Time integrator.
@@ -179,8 +178,7 @@ pub enum DynamicError {
 /// Estimated stable step of Stoermer-Verlet, 2 / omega_max, with omega_max the largest
 /// element frequency at the reference configuration (all wires sticking: the stiffest state).
 pub fn stable_step(beam: &Beam) -> Result<f64, BeamError> {
-    let mu = beam.spec().mass_per_length;
-    let me = planar_mass(mu, beam.element_length());
+    let me = beam.element_mass();
     let chol = me
         .cholesky()
         .ok_or_else(|| BeamError::Setup("mass matrix not positive".into()))?;
@@ -191,8 +189,8 @@ pub fn stable_step(beam: &Beam) -> Result<f64, BeamError> {
     let mut omega2: f64 = 0.0;
     for e in 0..beam.spec().elements {
         let k = beam.element_tangent(e, beam.reference())?;
-        let sym = (k + k.transpose()) * 0.5;
-        let a: SMatrix<f64, 8, 8> = linv * sym * linv.transpose();
+        let sym = (&k + k.transpose()) * 0.5;
+        let a = &linv * sym * linv.transpose();
         let eig = SymmetricEigen::new(a);
         omega2 = omega2.max(eig.eigenvalues.max());
     }

@@ -3,7 +3,7 @@
 //! the stick/slip laws (kinetic + gravity + elastic + dissipated constant up to the
 //! integrator's error, which falls with the step).
 
-use strand_ancf::beam::{Beam, BeamSpec, Support};
+use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support};
 use strand_ancf::dynamics::{DynamicOptions, DynamicSummary, Scheme, run_dynamic, stable_step};
 use strand_core::{
     LawKind, LayDirection, LayerSpec, Material, SectionLaw, Strand, StrandSpec, WireSpec,
@@ -54,8 +54,9 @@ fn pendulum_of(s: &Strand, kind: LawKind, elements: usize) -> Beam {
             elements,
             bending_points: None,
             mass_per_length: s.mass_per_length(),
-            direction: [1.0, 0.0],
-            gravity: [0.0, -9.8065],
+            element: ElementKind::Planar,
+            direction: [1.0, 0.0, 0.0],
+            gravity: [0.0, -9.8065, 0.0],
             start: Some(Support::Pinned),
             end: None,
         },

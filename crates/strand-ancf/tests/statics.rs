@@ -2,7 +2,7 @@
 //! cantilever, the inextensible elastica (SPEC 7), the shooting solution with the same
 //! stick/slip law (`strand-elastica`), and the paper's section-3 observations.
 
-use strand_ancf::beam::{Beam, BeamSpec, Support};
+use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support};
 use strand_ancf::statics::{StaticOptions, solve_static};
 use strand_core::{
     LawKind, LayDirection, LayerSpec, Material, SectionLaw, Strand, StrandSpec, WireSpec,
@@ -43,8 +43,9 @@ fn cantilever(law: SectionLaw, elements: usize, mu: f64, g: f64) -> Beam {
             elements,
             bending_points: None,
             mass_per_length: mu,
-            direction: [1.0, 0.0],
-            gravity: [0.0, -g],
+            element: ElementKind::Planar,
+            direction: [1.0, 0.0, 0.0],
+            gravity: [0.0, -g, 0.0],
             start: Some(Support::Clamped),
             end: None,
         },
@@ -55,7 +56,7 @@ fn cantilever(law: SectionLaw, elements: usize, mu: f64, g: f64) -> Beam {
 
 fn tip(beam: &Beam, q: &[f64]) -> [f64; 2] {
     let (p, _) = beam.sample(q, beam.length());
-    [p.x, p.y]
+    [p[0], p[1]]
 }
 
 /// Small deflection: tip drop within 0.5 % of q L^4 / (8 EI).
@@ -135,7 +136,7 @@ fn continuous_law_converges_to_the_shooting_solution() {
                 let x = s.length() * i as f64 / 200.0;
                 let (p, _) = beam.sample(&sol.q, x);
                 let r = reference.position(x);
-                (p.x - r[0]).hypot(p.y - r[1])
+                (p[0] - r[0]).hypot(p[1] - r[1])
             })
             .fold(0.0, f64::max);
         println!(

@@ -3,7 +3,7 @@
 //! motion of the unstrained strand produces no force and no energy.
 
 use strand_ancf::band::BandMatrix;
-use strand_ancf::beam::{Beam, BeamSpec, Support};
+use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support};
 use strand_core::{
     LawKind, LayDirection, LayerSpec, Material, SectionLaw, Strand, StrandSpec, WireSpec,
 };
@@ -40,8 +40,9 @@ fn beam(kind: LawKind, start: Option<Support>) -> Beam {
             elements: 4,
             bending_points: None,
             mass_per_length: s.mass_per_length(),
-            direction: [1.0, 0.0],
-            gravity: [0.0, -9.81],
+            element: ElementKind::Planar,
+            direction: [1.0, 0.0, 0.0],
+            gravity: [0.0, -9.81, 0.0],
             start,
             end: None,
         },

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use serde::Serialize;
-use strand_ancf::beam::{Beam, BeamSpec, PointState, Support as BeamSupport};
+use strand_ancf::beam::{Beam, BeamSpec, ElementKind, PointState, Support as BeamSupport};
 use strand_ancf::dynamics::{DynamicOptions, Scheme, run_dynamic};
 use strand_ancf::statics::{StaticOptions, solve_static};
 use strand_core::{LawKind, SectionLaw, WireState};
@@ -115,13 +115,6 @@ pub fn run_scene(
     opts: &RunOptions,
     progress: &mut dyn FnMut(&str, f64),
 ) -> Result<Vec<RunSummary>, RunError> {
-    if !scene.is_planar() {
-        return Err(RunError::Unsupported(
-            "this scene leaves the XY plane (initial.direction or loads.gravity has a Z \
-             component); this version runs planar scenes only"
-                .into(),
-        ));
-    }
     let mut out = Vec::new();
     let models: [(&str, Option<&BeamModel>, LawKind); 2] = [
         ("equivalent", scene.models.equivalent.as_ref(), scene.law),
@@ -170,14 +163,17 @@ fn run_beam(
     };
     let law = SectionLaw::new(strand, kind);
     let mass = model.mass_per_length.unwrap_or(strand.mass_per_length());
-    let d = scene.direction;
-    let n = (d[0] * d[0] + d[1] * d[1]).sqrt();
     let spec = BeamSpec {
         elements: model.elements,
         bending_points: model.integration_points,
         mass_per_length: mass,
-        direction: [d[0] / n, d[1] / n],
-        gravity: [scene.gravity[0], scene.gravity[1]],
+        element: if scene.is_planar() {
+            ElementKind::Planar
+        } else {
+            ElementKind::Spatial
+        },
+        direction: scene.direction,
+        gravity: scene.gravity,
         start: beam_support(scene, End::Start),
         end: beam_support(scene, End::End),
     };
@@ -314,13 +310,24 @@ fn write_state(
         } else {
             &slip[..0]
         };
-        let secant = law.planar_secant(&st, pt.eps, pt.kappa, sl);
-        c.row(&[pt.x, r.x, r.y, 0.0, pt.kappa, ea * pt.eps, secant])
+        // Planar: signed curvature and the planar secant; spatial: the curvature magnitude and
+        // |M| / |kappa| of the vector law.
+        let (curvature, secant) = if pt.kappa_y == 0.0 {
+            (pt.kappa, law.planar_secant(&st, pt.eps, pt.kappa, sl))
+        } else {
+            let mut tr = vec![0.0; sl.len()];
+            let r = law.vector(&st, pt.eps, [pt.kappa_y, pt.kappa], sl, &mut tr);
+            let k = pt.kappa_y.hypot(pt.kappa);
+            (k, r.moment[0].hypot(r.moment[1]) / k)
+        };
+        c.row(&[pt.x, r[0], r[1], r[2], curvature, ea * pt.eps, secant])
             .map_err(e)?;
+        // The per-wire table follows the planar phase convention: planar states only.
+        if pt.kappa_y != 0.0 {
+            continue;
+        }
         for wr in law.planar_wires(&st, pt.eps, pt.kappa, sl) {
-            let crit = wr
-                .critical_curvature
-                .map_or("inf".to_string(), |v| v.to_string());
+            let crit = wr.critical_curvature.map_or("inf".to_string(), number);
             let state = match wr.state {
                 WireState::Stick => "stick",
                 WireState::Slip => "slip",
@@ -341,8 +348,7 @@ fn write_state(
 }
 
 fn tip_of(beam: &Beam, q: &[f64]) -> [f64; 3] {
-    let (r, _) = beam.sample(q, beam.length());
-    [r.x, r.y, 0.0]
+    beam.sample(q, beam.length()).0
 }
 
 fn run_static(
@@ -396,7 +402,10 @@ fn run_dynamics(
         std::fs::create_dir_all(&vtk_dir).map_err(io(&vtk_dir))?;
     }
     let n = beam.spec().elements;
-    let k = n * strand_ancf::beam::NODE_COORDS;
+    let nd = beam.node_coords();
+    let k = n * nd;
+    // Velocity of the tip: the last node's position coordinates.
+    let dim = nd / 2;
     let mut frame = 0usize;
     let mut write_error: Option<String> = None;
     let mut last_q = beam.reference().to_vec();
@@ -408,7 +417,10 @@ fn run_dynamics(
         }
         let e = &f.energies;
         let mut rows = || -> std::io::Result<()> {
-            tip.row(&[f.t, f.q[k], f.q[k + 1], 0.0, f.v[k], f.v[k + 1], 0.0])?;
+            let (mut x, mut v) = ([0.0; 3], [0.0; 3]);
+            x[..dim].copy_from_slice(&f.q[k..k + dim]);
+            v[..dim].copy_from_slice(&f.v[k..k + dim]);
+            tip.row(&[f.t, x[0], x[1], x[2], v[0], v[1], v[2]])?;
             energy.row(&[
                 f.t,
                 e.kinetic,
@@ -421,8 +433,8 @@ fn run_dynamics(
                 let samples = 4 * n;
                 let pts: Vec<[f64; 3]> = (0..=samples)
                     .map(|i| {
-                        let (r, _) = beam.sample(f.q, beam.length() * i as f64 / samples as f64);
-                        [r.x, r.y, 0.0]
+                        beam.sample(f.q, beam.length() * i as f64 / samples as f64)
+                            .0
                     })
                     .collect();
                 let path = vtk_dir.join(format!("centerline_{frame:05}.vtk"));

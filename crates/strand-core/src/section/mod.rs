@@ -396,7 +396,8 @@ impl SectionLaw {
             let p = w.position;
             let c = (p[0] * b[0] + p[1] * b[1]).clamp(-1.0, 1.0);
             let sin_t = (p[0] * b[1] - p[1] * b[0]).abs();
-            let theta = c.acos();
+            // atan2 keeps full precision near the neutral axis, where acos(c) does not.
+            let theta = sin_t.atan2(c);
             let gains = [
                 (law.capstan * theta).exp_m1(),
                 -(-law.capstan * theta).exp_m1(),
