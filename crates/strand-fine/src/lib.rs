@@ -9,6 +9,7 @@
 //! * [`model`]: wires, supports, gravity, state, loads and energies.
 //! * [`statics`]: Newton-Raphson static equilibrium; [`dynamics`]: symplectic time stepping.
 //!
+//! * [`bending`]: the virtual bending test (moment against curvature under tension).
 //! * [`contact`]: wire-to-core contact (penalty and Cundall-Strack friction with history).
 //!
 //! Units are SI throughout (m, kg, s, N, rad).
@@ -28,6 +29,7 @@
 //!   summed in a fixed order, so results are identical for any number of threads.
 //! * Contact histories are committed only on accepted time steps and converged load steps.
 
+pub mod bending;
 pub mod chain;
 pub mod contact;
 pub mod dynamics;
@@ -38,6 +40,7 @@ pub mod so3;
 pub mod statics;
 pub mod tangent;
 
+pub use bending::{BendingError, BendingPoint, BendingTest};
 pub use chain::{Chain, WireSection};
 pub use contact::{
     ContactHistory, ContactLaw, ContactLoad, ContactOptions, ContactPoint, ContactState,

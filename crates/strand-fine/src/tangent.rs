@@ -80,6 +80,22 @@ impl FineModel {
                         contact::evaluate_pair(cp, h, &wp, &cj, j, lj, &anchor)
                     };
                     if eval(0, 0.0).state == contact::ContactState::Open {
+                        // A contact at exactly zero gap (the lay geometry) enters with its
+                        // normal spring, so that Newton sees the core under the wire before
+                        // it penetrates.
+                        let q = contact::closest_on_axis(&p, &core_poses[j], lj);
+                        let d = p - q;
+                        if d.norm() > cp.rest_distance || d.norm() == 0.0 {
+                            continue;
+                        }
+                        let n = d.normalize();
+                        let b =
+                            contact_jacobian(&(p - wire.position), &(q - core_poses[j].position));
+                        let bn = n.transpose() * b;
+                        out.push(ElementTangent {
+                            segments: [Some(off + cp.segment), Some(j)],
+                            stiffness: bn.transpose() * bn * cp.law.normal_stiffness,
+                        });
                         continue;
                     }
                     let step_x = 1e-7 * w.chain.section.radius;
@@ -134,17 +150,7 @@ impl FineModel {
                     contact::nearest_core_segment(core_poses, &core.segments, &p, h.core_segment);
                 let cj = &core_poses[j];
                 let k = cp.law.normal_stiffness.max(cp.law.tangential_stiffness);
-                // Relative displacement of the contact point: B (dx_w, dw_w, dx_c, dw_c).
-                let skew = |a: Vector3<f64>| a.cross_matrix();
-                let mut b = SMatrix::<f64, 3, 12>::zeros();
-                b.fixed_view_mut::<3, 3>(0, 0)
-                    .copy_from(&Matrix3::identity());
-                b.fixed_view_mut::<3, 3>(0, 3)
-                    .copy_from(&(-skew(p - wire.position)));
-                b.fixed_view_mut::<3, 3>(0, 6)
-                    .copy_from(&(-Matrix3::identity()));
-                b.fixed_view_mut::<3, 3>(0, 9)
-                    .copy_from(&skew(p - cj.position));
+                let b = contact_jacobian(&(p - wire.position), &(p - cj.position));
                 out.push(ElementTangent {
                     segments: [Some(off + cp.segment), Some(j)],
                     stiffness: b.transpose() * b * k,
@@ -183,4 +189,20 @@ impl FineModel {
             .collect();
         per_wire.into_iter().flatten().collect()
     }
+}
+
+/// Jacobian of the relative displacement of a contact point, wire side minus core side, with
+/// respect to (dx_w, dw_w, dx_c, dw_c), for the arms `arm_wire`, `arm_core` (m) from the
+/// segment centres.
+fn contact_jacobian(arm_wire: &Vector3<f64>, arm_core: &Vector3<f64>) -> SMatrix<f64, 3, 12> {
+    let mut b = SMatrix::<f64, 3, 12>::zeros();
+    b.fixed_view_mut::<3, 3>(0, 0)
+        .copy_from(&Matrix3::identity());
+    b.fixed_view_mut::<3, 3>(0, 3)
+        .copy_from(&(-arm_wire.cross_matrix()));
+    b.fixed_view_mut::<3, 3>(0, 6)
+        .copy_from(&(-Matrix3::identity()));
+    b.fixed_view_mut::<3, 3>(0, 9)
+        .copy_from(&arm_core.cross_matrix());
+    b
 }

@@ -1,0 +1,415 @@
+//! Virtual bending test of a strand: moment against curvature under axial tension.
+//!
+//! A straight strand a whole number of pitches long is clamped at x = 0 (every wire) and its
+//! other end is bound to a rigid end plate (every wire's end clamped to the plate). The plate
+//! is moved so that the strand is stretched to the strain `eps = T / EA_eq` (the tension
+//! `T`), then along the end poses of circular arcs of growing curvature `kappa` (quasi-static
+//! load steps; the contact histories are committed after each). Under tension a bent strand
+//! is in equilibrium on an arc only if the tension's pull toward the arc's centre is
+//! balanced, as on a sheave: each wire carries the dead lateral pressure `T kappa` per unit
+//! strand length times its share of the axial stiffness (`E_c A_c` or `cos^3(alpha) E_w A_w`
+//! over `EA_eq`), away from the arc's centre. The arc is then an equilibrium whatever the bending stiffness, the
+//! internal moment is uniform, and the ends impose no shear.
+//!
+//! Measured (SI): the internal bending moment at cuts through the core's joints in the middle
+//! pitches, from the equilibrium of the part of the strand before the cut (clamp reactions
+//! and pressure loads), averaged over the cuts; the curvature of the core's centreline over
+//! the same pitches (tangent angle change over arc length); the moment at the clamp; the
+//! tension from the clamp reaction.
+
+use nalgebra::{UnitQuaternion, Vector3};
+use strand_core::{Strand, StrandSpec};
+
+use crate::contact::{ContactOptions, ContactState};
+use crate::model::{Discretisation, FineModel, ModelState, Support};
+use crate::segment::Pose;
+use crate::statics::{StaticError, StaticOptions, solve_static};
+
+/// Set-up of a virtual bending test.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BendingTest {
+    /// Strand length in pitches (at least 3; 6 removes end effects).
+    pub pitches: usize,
+    /// Segments per pitch of every wire.
+    pub segments_per_pitch: usize,
+    /// Axial tension T (N).
+    pub tension: f64,
+    /// Curvatures of the load steps after the tension step (1/m), increasing.
+    pub curvatures: Vec<f64>,
+    /// Contacts; the reference tension defaults to the wire tension under `T`.
+    pub contact: ContactOptions,
+    /// Friction coefficient mu (overrides the strand's).
+    pub friction: f64,
+    /// Static solver controls for each load step.
+    pub statics: StaticOptions,
+    /// Times a failed load step's curvature increment may be halved.
+    pub max_halvings: usize,
+}
+
+/// One measured point of the moment-curvature curve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BendingPoint {
+    /// Curvature imposed by the end plate (1/m).
+    pub imposed_curvature: f64,
+    /// Curvature of the core's centreline over the middle pitches (1/m).
+    pub curvature: f64,
+    /// Internal bending moment averaged over the middle pitches (N m).
+    pub moment: f64,
+    /// Bending moment at the clamp (N m).
+    pub clamp_moment: f64,
+    /// Axial tension from the clamp reaction (N).
+    pub tension: f64,
+    /// Newton iterations of the load step.
+    pub iterations: usize,
+    /// Contacts stuck, slipping and open at the end of the step.
+    pub stick: usize,
+    /// Contacts slipping.
+    pub slip: usize,
+    /// Contacts open.
+    pub open: usize,
+}
+
+impl BendingPoint {
+    /// Secant bending stiffness M / kappa (N m^2).
+    pub fn secant_stiffness(&self) -> f64 {
+        self.moment / self.curvature
+    }
+}
+
+/// Failure of a bending test.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BendingError {
+    /// The strand has no helical layer.
+    #[error("the strand has no helical layer")]
+    NoLayer,
+    /// A load step did not reach equilibrium.
+    #[error("load step at curvature {curvature:.4e} 1/m: {source}")]
+    Static {
+        /// Imposed curvature (1/m).
+        curvature: f64,
+        /// The solver's error.
+        source: StaticError,
+    },
+}
+
+/// A load on a segment from outside the strand: (rest x of the segment or -1 for a clamp
+/// reaction, point of application, force, torque).
+type ExternalLoad = (f64, Vector3<f64>, Vector3<f64>, Vector3<f64>);
+
+/// Arc map of the bending test: the reference point (x, y, z) of the straight strand goes to
+/// the arc of curvature `kappa` stretched by `eps`, sections staying plane and normal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ArcMap {
+    kappa: f64,
+    eps: f64,
+}
+
+impl ArcMap {
+    fn angle(&self, x: f64) -> f64 {
+        self.kappa * x * (1.0 + self.eps)
+    }
+
+    fn point(&self, r: &Vector3<f64>) -> Vector3<f64> {
+        let s = r.x * (1.0 + self.eps);
+        if self.kappa == 0.0 {
+            return Vector3::new(s, r.y, r.z);
+        }
+        let th = self.kappa * s;
+        let rho = 1.0 / self.kappa - r.y;
+        Vector3::new(rho * th.sin(), 1.0 / self.kappa - rho * th.cos(), r.z)
+    }
+
+    fn inverse(&self, w: &Vector3<f64>) -> Vector3<f64> {
+        if self.kappa == 0.0 {
+            return Vector3::new(w.x / (1.0 + self.eps), w.y, w.z);
+        }
+        let (vx, vy) = (w.x, w.y - 1.0 / self.kappa);
+        let th = vx.atan2(-vy);
+        let rho = (vx * vx + vy * vy).sqrt();
+        Vector3::new(
+            th / self.kappa / (1.0 + self.eps),
+            1.0 / self.kappa - rho,
+            w.z,
+        )
+    }
+
+    fn rotation(&self, x: f64) -> UnitQuaternion<f64> {
+        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), self.angle(x))
+    }
+
+    /// Moves a pose from map `from` to this map.
+    fn remap(&self, from: &ArcMap, pose: &Pose) -> Pose {
+        let r = from.inverse(&pose.position);
+        Pose::new(
+            self.point(&r),
+            self.rotation(r.x) * from.rotation(r.x).inverse() * pose.rotation,
+        )
+    }
+}
+
+impl BendingTest {
+    /// Runs the test on `strand` (its length is replaced by `pitches` pitches) and returns
+    /// the measured curve: the tension step first (curvature zero), then one point per
+    /// curvature.
+    pub fn run(&self, strand: &Strand) -> Result<Vec<BendingPoint>, BendingError> {
+        let layer = strand.layer().ok_or(BendingError::NoLayer)?;
+        let pitch = layer.pitch;
+        let length = pitch * self.pitches as f64;
+        let spec = StrandSpec {
+            length,
+            friction: self.friction,
+            ..strand.spec().clone()
+        };
+        let strand = Strand::new(spec).expect("a valid strand with a new length");
+        let layer = strand.layer().expect("layer");
+        let n = self.pitches * self.segments_per_pitch;
+        let mut model = FineModel::from_strand(
+            &strand,
+            Discretisation {
+                core_segments: n,
+                wire_segments: n,
+            },
+            Support::Clamped,
+            Support::Clamped,
+        );
+        let ea = strand.axial_stiffness();
+        let eps = self.tension / ea;
+        let w = &layer.spec.wire;
+        let wire_ea = w.material.youngs_modulus * w.area();
+        let alpha = layer.lay_angle();
+        let contact = ContactOptions {
+            reference_tension: Some(
+                self.contact
+                    .reference_tension
+                    .unwrap_or(wire_ea * alpha.cos().powi(2) * eps),
+            ),
+            friction: Some(self.friction),
+            ..self.contact
+        };
+        model.add_contacts(&strand, &contact);
+        let core = strand.core();
+        let shares: Vec<f64> = std::iter::once(core.material.youngs_modulus * core.area() / ea)
+            .chain((0..layer.wires()).map(|_| layer.wire_axial_stiffness() / ea))
+            .collect();
+        // Rest ground poses of the end plate's anchors.
+        let end_grounds: Vec<Vec<(usize, Pose)>> = model
+            .wires
+            .iter()
+            .map(|w| {
+                w.anchors
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, a)| a.segment + 1 == w.chain.len() && a.ground.position.x > 0.0)
+                    .map(|(i, a)| (i, a.ground))
+                    .collect()
+            })
+            .collect();
+        let mut state = model.rest_state();
+        let mut map = ArcMap {
+            kappa: 0.0,
+            eps: 0.0,
+        };
+        let (lo, hi) = (
+            (self.pitches as f64 / 2.0 - 1.0).max(1.0) * pitch,
+            (self.pitches as f64 / 2.0 + 1.0).min(self.pitches as f64 - 1.0) * pitch,
+        );
+        let mut out = Vec::new();
+        let steps = std::iter::once(0.0).chain(self.curvatures.iter().copied());
+        for kappa in steps {
+            // Reach `kappa` from the last converged curvature, halving the increment when a
+            // load step fails (stick-slip changes of many contacts at once).
+            let mut iterations = 0;
+            let mut reached = map.kappa;
+            let mut increment = kappa - reached;
+            let mut halvings = 0;
+            loop {
+                let target = if (kappa - reached).abs() <= increment.abs() {
+                    kappa
+                } else {
+                    reached + increment
+                };
+                let saved = (state.clone(), map);
+                match self.step_to(
+                    &mut model,
+                    &mut state,
+                    &mut map,
+                    target,
+                    eps,
+                    &shares,
+                    &end_grounds,
+                ) {
+                    Ok(it) => {
+                        iterations += it;
+                        reached = target;
+                        if target == kappa {
+                            break;
+                        }
+                    }
+                    Err(source) => {
+                        (state, map) = saved;
+                        halvings += 1;
+                        if halvings > self.max_halvings {
+                            return Err(BendingError::Static {
+                                curvature: target,
+                                source,
+                            });
+                        }
+                        increment *= 0.5;
+                    }
+                }
+            }
+            out.push(self.measure(&model, &state, kappa, iterations, (lo, hi)));
+        }
+        Ok(out)
+    }
+
+    /// One load step to curvature `kappa`: remaps the state, moves the end plate, sets the
+    /// pressure and solves; returns the Newton iterations.
+    fn step_to(
+        &self,
+        model: &mut FineModel,
+        state: &mut ModelState,
+        map: &mut ArcMap,
+        kappa: f64,
+        eps: f64,
+        shares: &[f64],
+        end_grounds: &[Vec<(usize, Pose)>],
+    ) -> Result<usize, StaticError> {
+        {
+            let next = ArcMap { kappa, eps };
+            // Initial guess: the previous equilibrium carried by the change of arc.
+            for ws in &mut state.wires {
+                for p in &mut ws.poses {
+                    *p = next.remap(map, p);
+                }
+            }
+            *map = next;
+            for (w, grounds) in model.wires.iter_mut().zip(end_grounds) {
+                for &(i, g) in grounds {
+                    let a = &mut w.anchors[i];
+                    a.ground = Pose::new(
+                        map.point(&g.position),
+                        map.rotation(g.position.x) * g.rotation,
+                    );
+                }
+            }
+            // Sheave pressure, away from the arc's centre.
+            for (w, &share) in model.wires.iter_mut().zip(shares) {
+                w.external = w
+                    .chain
+                    .rest
+                    .iter()
+                    .zip(&w.chain.segments)
+                    .map(|(r, s)| {
+                        let th = map.angle(r.position.x);
+                        let dx = s.length * r.tangent().x;
+                        Vector3::new(th.sin(), -th.cos(), 0.0) * (share * self.tension * kappa * dx)
+                    })
+                    .collect();
+            }
+            let rep = solve_static(model, state, &self.statics)?;
+            Ok(rep.iterations)
+        }
+    }
+
+    fn measure(
+        &self,
+        model: &FineModel,
+        state: &ModelState,
+        kappa: f64,
+        iterations: usize,
+        (lo, hi): (f64, f64),
+    ) -> BendingPoint {
+        let mut loads = model.load_buffers();
+        model.compute_loads(state, 1.0, &mut loads);
+        // Clamp reactions on the segments (start anchors) and pressure loads, with the rest
+        // x of the segment they act on.
+        let mut ext: Vec<ExternalLoad> = Vec::new();
+        let mut tension = 0.0;
+        for (w, s) in model.wires.iter().zip(&state.wires) {
+            for a in &w.anchors {
+                if a.segment != 0 {
+                    continue;
+                }
+                let l = a.joint.evaluate(&a.ground, &s.poses[a.segment]);
+                tension -= l.force_b.x;
+                ext.push((-1.0, s.poses[a.segment].position, l.force_b, l.torque_b));
+            }
+            for ((r, p), f) in w.chain.rest.iter().zip(&s.poses).zip(&w.external) {
+                ext.push((r.position.x, p.position, *f, Vector3::zeros()));
+            }
+        }
+        let moment_at = |x_cut: f64, c: &Vector3<f64>| -> f64 {
+            -ext.iter()
+                .filter(|e| e.0 < x_cut)
+                .map(|(_, p, f, t)| ((p - c).cross(f) + t).z)
+                .sum::<f64>()
+        };
+        let core = &model.wires[0].chain;
+        let line = core.centreline(&state.wires[0].poses);
+        let l = core.segments[0].length;
+        let mut sum = 0.0;
+        let mut cuts = 0;
+        for (k, c) in line.iter().enumerate() {
+            let x = k as f64 * l;
+            if x >= lo - 1e-12 && x <= hi + 1e-12 {
+                sum += moment_at(x, c);
+                cuts += 1;
+            }
+        }
+        // Curvature over [lo, hi]: tangent angle change of the core segments over the arc
+        // length between their centres.
+        let poses = &state.wires[0].poses;
+        let first = ((lo / l).round() as usize).min(poses.len() - 1);
+        let last = ((hi / l).round() as usize).saturating_sub(1).max(first + 1);
+        let angle = |p: &Pose| {
+            let t = p.tangent();
+            t.y.atan2(t.x)
+        };
+        let arc: f64 = (first..last)
+            .map(|k| (poses[k + 1].position - poses[k].position).norm())
+            .sum();
+        let curvature = (angle(&poses[last]) - angle(&poses[first])) / arc;
+        let count = |st: ContactState| {
+            loads
+                .iter()
+                .flat_map(|l| l.contacts.iter())
+                .filter(|c| c.state == st)
+                .count()
+        };
+        BendingPoint {
+            imposed_curvature: kappa,
+            curvature,
+            moment: sum / cuts.max(1) as f64,
+            clamp_moment: moment_at(1e-12, &line[0]),
+            tension,
+            iterations,
+            stick: count(ContactState::Stick),
+            slip: count(ContactState::Slip),
+            open: count(ContactState::Open),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn arc_map_inverts() {
+        let m = ArcMap {
+            kappa: 2.0,
+            eps: 1e-3,
+        };
+        let r = Vector3::new(0.1, 2e-3, -1e-3);
+        let back = m.inverse(&m.point(&r));
+        assert!((back - r).norm() < 1e-15);
+        let straight = ArcMap {
+            kappa: 0.0,
+            eps: 1e-3,
+        };
+        let p = Pose::new(straight.point(&r), UnitQuaternion::identity());
+        let q = m.remap(&straight, &p);
+        assert!((q.position - m.point(&r)).norm() < 1e-15);
+    }
+}
