@@ -49,8 +49,11 @@ pub struct DynamicOptions {
     /// Generalized-alpha: Newton converges when the correction is below this times the
     /// strand length.
     pub increment: f64,
-    /// Generalized-alpha: Newton iterations per step before the run stops.
+    /// Generalized-alpha: Newton iterations per step before the step is cut.
     pub max_iterations: usize,
+    /// Generalized-alpha: once Newton has been relaxed against a stick/slip cycle, a
+    /// correction below this times the strand length is accepted.
+    pub stagnation: f64,
 }
 
 impl DynamicOptions {
@@ -62,6 +65,7 @@ impl DynamicOptions {
             output_interval,
             increment: 1e-10,
             max_iterations: 25,
+            stagnation: 1e-9,
         }
     }
 }
@@ -114,6 +118,8 @@ pub struct DynamicSummary {
     pub steps: usize,
     /// Newton iterations in total (generalized-alpha).
     pub newton_iterations: usize,
+    /// Iteration matrices built and factorized (generalized-alpha).
+    pub factorizations: usize,
     /// Largest |total energy - initial total energy| over the run (J).
     pub balance_error: f64,
     /// Largest kinetic energy over the run (J): a scale for the balance error.
@@ -410,6 +416,7 @@ fn verlet(
         stable_step: stable,
         steps: n_steps,
         newton_iterations: 0,
+        factorizations: 1,
         balance_error: ledger.balance_error,
         max_kinetic: ledger.max_kinetic,
         last: en,
@@ -449,6 +456,10 @@ struct AlphaWork {
     g_free: Vec<f64>,
     k: BandMatrix,
     solver: BandSolver,
+    /// Step size the factorized iteration matrix belongs to (0: none).
+    factor_h: f64,
+    /// Iteration matrices built and factorized.
+    factorizations: usize,
     /// States to restore when a step is cut, one per level of cutting.
     saved: Vec<AlphaState>,
 }
@@ -500,16 +511,24 @@ fn alpha_step(
         st.acc[i] = 0.0;
     }
     add_free(beam, &mut st.q, 1.0, &w.dq);
+    // Modified Newton: the factorized iteration matrix S = beta' M + K is kept across
+    // iterations and steps and rebuilt when the step size changes or a correction shrinks by
+    // less than half (a stale tangent); every force evaluation is exact, so the converged
+    // state is the same as with full Newton.
     let mut iterations = 0;
     let mut outcome = None;
-    for _ in 0..opts.max_iterations {
+    let mut fresh = w.factor_h != h;
+    let mut prev = f64::INFINITY;
+    let mut relax: f64 = 1.0;
+    while iterations < opts.max_iterations {
         iterations += 1;
+        let k = fresh.then_some(&mut w.k);
         let Ok(ev) = beam.internal(
             &st.q,
             &st.slip,
             &mut w.trial,
             &mut w.force,
-            Some(&mut w.k),
+            k,
             Some(pts_new),
         ) else {
             break;
@@ -520,27 +539,42 @@ fn alpha_step(
                 w.r[i] = w.mv[i] + f - w.g_free[i];
             }
         }
-        w.k.add_scaled(beta_p, beam.mass());
-        if !w.solver.factorize(&w.k) {
-            break;
+        if fresh {
+            w.k.add_scaled(beta_p, beam.mass());
+            w.factorizations += 1;
+            if !w.solver.factorize(&w.k) {
+                w.factor_h = 0.0;
+                break;
+            }
+            w.factor_h = h;
         }
         w.dq.copy_from_slice(&w.r);
         w.solver.solve(&mut w.dq);
         let dn = w.dq.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         if !dn.is_finite() || dn > beam.length() {
+            // Diverged: the step is retried in halves, with a fresh matrix.
+            w.factor_h = 0.0;
             break;
         }
-        add_free(beam, &mut st.q, -1.0, &w.dq);
+        // With the stick/slip laws Newton can cycle between two sets of slipping wires: the
+        // correction stops shrinking. Relaxed corrections (halved at each stall) make such a
+        // cycle contract onto the solution between the two sets.
+        if iterations > 2 && dn >= 0.9 * prev {
+            relax = (0.5 * relax).max(1.0 / 16.0);
+        }
+        add_free(beam, &mut st.q, -relax, &w.dq);
         for i in 0..nf {
-            st.vf[i] -= gamma_p * w.dq[i];
-            st.acc[i] -= beta_p * w.dq[i];
+            st.vf[i] -= relax * gamma_p * w.dq[i];
+            st.acc[i] -= relax * beta_p * w.dq[i];
         }
         // The ledger uses the forces before this last correction: it moved q by at most
         // `tol`, which changes the energies by O(tol |Q|), far below the integrator's error.
-        if dn <= tol {
+        if dn <= tol || (relax < 1.0 && dn <= opts.stagnation * beam.length()) {
             outcome = Some(ev);
             break;
         }
+        fresh = dn > 0.5 * prev;
+        prev = dn;
     }
     match outcome {
         Some(ev) => {
@@ -610,6 +644,8 @@ fn generalized_alpha(
         g_free: zeros.clone(),
         k: BandMatrix::zeros(nf, b, b),
         solver: BandSolver::default(),
+        factor_h: 0.0,
+        factorizations: 0,
         saved: (0..=MAX_CUTS).map(|_| new_state()).collect(),
     };
     gather_free(beam, beam.gravity_force(), &mut w.g_free);
@@ -703,6 +739,7 @@ fn generalized_alpha(
         stable_step: stable,
         steps: n_steps,
         newton_iterations,
+        factorizations: w.factorizations,
         balance_error: ledger.balance_error,
         max_kinetic: ledger.max_kinetic,
         last: en,
