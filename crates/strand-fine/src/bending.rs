@@ -152,6 +152,14 @@ impl BendingTest {
     /// the measured curve: the tension step first (curvature zero), then one point per
     /// curvature.
     pub fn run(&self, strand: &Strand) -> Result<Vec<BendingPoint>, BendingError> {
+        self.run_with_state(strand).map(|(curve, _, _)| curve)
+    }
+
+    /// As [`BendingTest::run`], also returning the model and its final equilibrium state.
+    pub fn run_with_state(
+        &self,
+        strand: &Strand,
+    ) -> Result<(Vec<BendingPoint>, FineModel, ModelState), BendingError> {
         let layer = strand.layer().ok_or(BendingError::NoLayer)?;
         let pitch = layer.pitch;
         let length = pitch * self.pitches as f64;
@@ -260,7 +268,7 @@ impl BendingTest {
             }
             out.push(self.measure(&model, &state, kappa, iterations, (lo, hi)));
         }
-        Ok(out)
+        Ok((out, model, state))
     }
 
     /// One load step to curvature `kappa`: remaps the state, moves the end plate, sets the
