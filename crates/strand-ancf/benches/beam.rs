@@ -1,0 +1,121 @@
+//! Cost of the strand beam on the paper's section-3 strand (L = 1 m, E = 2e9 Pa, 30 elements,
+//! `continuous` law, hanging shape): one element's forces and tangent, the full residual and
+//! tangent assembly, and steps of each integrator on the pinned pendulum.
+
+use std::hint::black_box;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use strand_ancf::band::BandMatrix;
+use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support};
+use strand_ancf::dynamics::{DynamicOptions, Scheme, run_dynamic, stable_step};
+use strand_ancf::statics::{StaticOptions, solve_static};
+use strand_core::{
+    LawKind, LayDirection, LayerSpec, Material, SectionLaw, Strand, StrandSpec, WireSpec,
+};
+
+fn section3(length: f64) -> Strand {
+    let mat = Material {
+        youngs_modulus: 2.0e9,
+        poisson_ratio: 0.3,
+        density: 5747.0,
+    };
+    let w = |d| WireSpec {
+        diameter: d,
+        material: mat,
+    };
+    Strand::new(StrandSpec {
+        length,
+        core: w(3.0e-3),
+        layers: vec![LayerSpec {
+            wires: 6,
+            wire: w(2.0e-3),
+            lay_angle: 20f64.to_radians(),
+            phase: 0.0,
+            direction: LayDirection::Right,
+        }],
+        friction: 0.3,
+    })
+    .unwrap()
+}
+
+/// A beam of `elements` elements of the 30-element mesh's length (1/30 m).
+fn beam(elements: usize, kind: LawKind, support: Support, element: ElementKind) -> Beam {
+    let s = section3(elements as f64 / 30.0);
+    Beam::new(
+        BeamSpec {
+            elements,
+            bending_points: None,
+            mass_per_length: s.mass_per_length(),
+            element,
+            direction: [1.0, 0.0, 0.0],
+            gravity: [0.0, -12.0, 0.0],
+            start: Some(support),
+            end: None,
+        },
+        SectionLaw::new(&s, kind),
+    )
+    .unwrap()
+}
+
+fn assembly(c: &mut Criterion) {
+    for element in [ElementKind::Planar, ElementKind::Spatial] {
+        for n in [1usize, 30] {
+            let b = beam(n, LawKind::Continuous, Support::Clamped, element);
+            // A hanging state from the static solution of the 30-element beam.
+            let q = if n == 30 {
+                solve_static(&b, &StaticOptions::default(), &mut |_| {})
+                    .unwrap()
+                    .q
+            } else {
+                b.reference()
+                    .iter()
+                    .enumerate()
+                    .map(|(i, v)| v + 1e-3 * (i as f64).sin())
+                    .collect()
+            };
+            let mut force = vec![0.0; b.coords()];
+            let mut k = BandMatrix::zeros(b.dofs(), b.bandwidth(), b.bandwidth());
+            let name = format!("{element:?} {n} element(s)");
+            c.bench_function(&format!("{name}: forces"), |bch| {
+                bch.iter(|| {
+                    b.internal(black_box(&q), &[], &mut [], &mut force, None, None)
+                        .unwrap()
+                })
+            });
+            c.bench_function(&format!("{name}: forces and tangent"), |bch| {
+                bch.iter(|| {
+                    b.internal(black_box(&q), &[], &mut [], &mut force, Some(&mut k), None)
+                        .unwrap()
+                })
+            });
+        }
+    }
+}
+
+fn integrators(c: &mut Criterion) {
+    let b = beam(
+        30,
+        LawKind::Continuous,
+        Support::Pinned,
+        ElementKind::Planar,
+    );
+    let hs = stable_step(&b).unwrap();
+    let mut g = c.benchmark_group("section-3 pendulum, 30 elements, continuous law");
+    g.sample_size(10);
+    g.bench_function("Verlet: 1000 steps at 0.9 of the stable step", |bch| {
+        let o = DynamicOptions::new(1000.0 * 0.9 * hs, Scheme::Verlet { step: None }, 1.0);
+        bch.iter(|| run_dynamic(&b, &o, &mut |_| {}).unwrap())
+    });
+    g.bench_function("generalized-alpha: 50 steps of 1 ms from rest", |bch| {
+        let scheme = Scheme::GeneralizedAlpha {
+            step: 1e-3,
+            spectral_radius: 1.0,
+        };
+        let o = DynamicOptions::new(0.05, scheme, 1.0);
+        bch.iter(|| run_dynamic(&b, &o, &mut |_| {}).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, assembly, integrators);
+criterion_main!(benches);
