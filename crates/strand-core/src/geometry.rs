@@ -195,7 +195,7 @@ impl Strand {
     /// Validates the inputs and derives the strand. Errors name the offending field with the
     /// scene format's path below `strand` (e.g. `layers[0].lay_angle_deg`).
     pub fn new(spec: StrandSpec) -> Result<Self, InputError> {
-        positive("length", spec.length)?;
+        in_range("length", spec.length, LENGTH_RANGE, "m")?;
         check_wire("core", &spec.core)?;
         non_negative("friction", spec.friction)?;
         if spec.layers.len() > 1 {
@@ -355,11 +355,38 @@ fn non_negative(field: &str, v: f64) -> Result<(), InputError> {
     }
 }
 
+/// Plausible strand lengths (m).
+const LENGTH_RANGE: (f64, f64) = (1e-6, 1e9);
+/// Plausible wire diameters (m).
+const DIAMETER_RANGE: (f64, f64) = (1e-9, 10.0);
+/// Plausible Young's moduli (Pa).
+const MODULUS_RANGE: (f64, f64) = (1e-3, 1e15);
+/// Plausible densities (kg/m^3).
+const DENSITY_RANGE: (f64, f64) = (1e-6, 1e6);
+
+/// A positive value within a plausibility range that keeps every derived quantity (areas,
+/// inertias ~ d^4, stiffnesses) finite and non-zero.
+fn in_range(field: &str, v: f64, (lo, hi): (f64, f64), unit: &str) -> Result<(), InputError> {
+    positive(field, v)?;
+    if v < lo || v > hi {
+        return Err(InputError::new(
+            field,
+            format!("{v} {unit} lies outside the plausible range [{lo:e}, {hi:e}] {unit}"),
+        ));
+    }
+    Ok(())
+}
+
 fn check_wire(prefix: &str, w: &WireSpec) -> Result<(), InputError> {
     let p = |f: &str| format!("{prefix}.{f}");
-    positive(&p("diameter"), w.diameter)?;
-    positive(&p("youngs_modulus"), w.material.youngs_modulus)?;
-    positive(&p("density"), w.material.density)?;
+    in_range(&p("diameter"), w.diameter, DIAMETER_RANGE, "m")?;
+    in_range(
+        &p("youngs_modulus"),
+        w.material.youngs_modulus,
+        MODULUS_RANGE,
+        "Pa",
+    )?;
+    in_range(&p("density"), w.material.density, DENSITY_RANGE, "kg/m^3")?;
     let nu = w.material.poisson_ratio;
     finite(&p("poisson_ratio"), nu)?;
     if nu <= -1.0 || nu > 0.5 {

@@ -1,0 +1,110 @@
+//! Bad input never panics: random and mutated scene files are either accepted as valid scenes
+//! or rejected with an error that names the JSON path of the fault (or the whole file for
+//! syntax errors).
+
+use proptest::prelude::*;
+use serde_json::{Value, json};
+use strand_scene::Scene;
+
+fn good() -> Value {
+    serde_json::from_str(include_str!("../../../validation/paper-fig7-g8.json")).unwrap()
+}
+
+/// Every JSON pointer to a leaf or object in `v`.
+fn pointers(v: &Value, prefix: String, out: &mut Vec<String>) {
+    out.push(prefix.clone());
+    match v {
+        Value::Object(m) => {
+            for (k, x) in m {
+                pointers(x, format!("{prefix}/{k}"), out);
+            }
+        }
+        Value::Array(a) => {
+            for (i, x) in a.iter().enumerate() {
+                pointers(x, format!("{prefix}/{i}"), out);
+            }
+        }
+        _ => {}
+    }
+}
+
+fn replacement() -> impl Strategy<Value = Value> {
+    prop_oneof![
+        Just(json!(null)),
+        Just(json!(0)),
+        Just(json!(-1.0)),
+        Just(json!(1e308)),
+        Just(json!(-1e-300)),
+        Just(json!(1_000_000_000_000i64)),
+        Just(json!("text")),
+        Just(json!([])),
+        Just(json!({})),
+        Just(json!([1.0, 2.0])),
+        Just(json!(true)),
+        any::<f64>().prop_map(|x| if x.is_finite() { json!(x) } else { json!(null) }),
+        any::<i64>().prop_map(|x| json!(x)),
+    ]
+}
+
+fn check(text: &str) -> Result<(), TestCaseError> {
+    match Scene::parse(text) {
+        Ok(scene) => {
+            // An accepted scene is usable: its strand quantities are finite.
+            prop_assert!(scene.strand.mass_per_length().is_finite());
+            prop_assert!(scene.strand.min_bending_stiffness().is_finite());
+        }
+        Err(e) => {
+            prop_assert!(!e.message.is_empty());
+            // Value errors name a path; syntax errors of the whole file may not.
+            let whole_file = e.path.is_empty();
+            prop_assert!(
+                !whole_file || e.message.contains("line") || e.message.contains("empty"),
+                "no path and no position: {e}"
+            );
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// Replace any value in a valid scene by a value of another type or range.
+    #[test]
+    fn mutated_values(which in any::<prop::sample::Index>(), v in replacement()) {
+        let mut s = good();
+        let mut ptrs = Vec::new();
+        pointers(&s, String::new(), &mut ptrs);
+        let p = which.get(&ptrs).clone();
+        if p.is_empty() {
+            s = v;
+        } else {
+            *s.pointer_mut(&p).unwrap() = v;
+        }
+        check(&s.to_string())?;
+    }
+
+    /// Remove any field of a valid scene.
+    #[test]
+    fn removed_fields(which in any::<prop::sample::Index>()) {
+        let mut s = good();
+        let mut ptrs = Vec::new();
+        pointers(&s, String::new(), &mut ptrs);
+        let p = which.get(&ptrs).clone();
+        if let Some((parent, key)) = p.rsplit_once('/') {
+            if let Some(Value::Object(m)) = s.pointer_mut(parent) {
+                m.remove(key);
+            }
+        }
+        check(&s.to_string())?;
+    }
+
+    /// Truncated files and random bytes.
+    #[test]
+    fn truncated_and_random_text(cut in 0usize..2000, noise in "\\PC{0,200}") {
+        let text = good().to_string();
+        let cut = cut.min(text.len());
+        check(&text[..cut])?;
+        check(&noise)?;
+    }
+}
