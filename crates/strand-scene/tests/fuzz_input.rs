@@ -91,10 +91,10 @@ proptest! {
         let mut ptrs = Vec::new();
         pointers(&s, String::new(), &mut ptrs);
         let p = which.get(&ptrs).clone();
-        if let Some((parent, key)) = p.rsplit_once('/') {
-            if let Some(Value::Object(m)) = s.pointer_mut(parent) {
-                m.remove(key);
-            }
+        if let Some((parent, key)) = p.rsplit_once('/')
+            && let Some(Value::Object(m)) = s.pointer_mut(parent)
+        {
+            m.remove(key);
         }
         check(&s.to_string())?;
     }
