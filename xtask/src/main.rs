@@ -5,6 +5,8 @@ use std::process::Command;
 use anyhow::{Context, bail};
 use clap::{Parser, Subcommand};
 
+mod validate;
+
 #[derive(Parser)]
 #[command(name = "cargo xtask", about = "strand project tasks")]
 struct Cli {
@@ -14,14 +16,34 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Task {
-    /// Everything CI checks: formatting, clippy, docs and the test suite (release).
+    /// Everything CI checks: formatting, clippy, docs, the test suite (release) and
+    /// `validate --quick`.
     Check,
+    /// Runs the validation scenes and their checks (validation/tolerances.json), prints the
+    /// table, writes target/validation/report.{md,json}; fails on any failed check.
+    Validate(validate::ValidateArgs),
 }
 
 fn main() -> anyhow::Result<()> {
     match Cli::parse().task {
         Task::Check => check(),
+        Task::Validate(args) => validate_and_exit(&args),
     }
+}
+
+/// Runs the validation, prints the table and exits with status 1 when a check failed.
+fn validate_and_exit(args: &validate::ValidateArgs) -> anyhow::Result<()> {
+    let report = validate::run(args)?;
+    print!("{}", report.table());
+    if report.failed() {
+        let names: Vec<String> = report
+            .failures()
+            .map(|r| format!("{} {} {}", r.scene, r.check, r.metric))
+            .collect();
+        eprintln!("validation failed: {}", names.join("; "));
+        std::process::exit(1);
+    }
+    Ok(())
 }
 
 /// Runs `cargo` with `args` in the workspace root, failing on a non-zero exit.
@@ -57,5 +79,10 @@ fn check() -> anyhow::Result<()> {
         &["doc", "--workspace", "--no-deps", "--quiet"],
         &[("RUSTDOCFLAGS", "-D warnings")],
     )?;
-    cargo(&["test", "--workspace", "--release"], &[])
+    cargo(&["test", "--workspace", "--release"], &[])?;
+    println!("== cargo xtask validate --quick");
+    validate_and_exit(&validate::ValidateArgs {
+        quick: true,
+        ..Default::default()
+    })
 }

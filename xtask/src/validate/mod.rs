@@ -1,0 +1,465 @@
+//! `cargo xtask validate`: runs the scenes of `validation/` on the shared runner
+//! (`strand_scene::run_scene`), applies the checks their entry in
+//! `validation/tolerances.json` names, prints one table and writes
+//! `target/validation/report.{md,json}`.
+
+pub mod checks;
+pub mod golden;
+pub mod machine;
+pub mod report;
+pub mod results;
+pub mod tolerances;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, bail};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use strand_scene::{Analysis, RunOptions, RunSummary, Scene, run_scene};
+
+use checks::BeamKind;
+use machine::Provenance;
+use report::{Report, Row};
+use tolerances::{CheckSpec, ConvergenceTol, Tolerances};
+
+/// Options of `cargo xtask validate`.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct ValidateArgs {
+    /// Only the quick subset (what CI runs).
+    #[arg(long)]
+    pub quick: bool,
+    /// Only this scene (its file name in validation/ without `.json`).
+    #[arg(long, value_name = "NAME")]
+    pub scene: Option<String>,
+    /// Rewrite golden/ from this run's results (after reviewing them).
+    #[arg(long)]
+    pub bless: bool,
+    /// Folder of the report and the runs [default: target/validation].
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Developer check that the harness can fail: multiply every Young's modulus of the strand
+    /// by FACTOR in the model runs (the references keep the scene's values).
+    #[arg(long, value_name = "FACTOR")]
+    pub perturb_stiffness: Option<f64>,
+}
+
+/// The repository root (the parent of `xtask/`).
+pub fn repo_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask/ has a parent")
+        .to_path_buf()
+}
+
+/// Runs the validation and writes the report; the caller decides the exit status from
+/// [`Report::failed`].
+pub fn run(args: &ValidateArgs) -> anyhow::Result<Report> {
+    let t0 = Instant::now();
+    let root = repo_root();
+    if let Some(f) = args.perturb_stiffness {
+        if !(f.is_finite() && f > 0.0) {
+            bail!("--perturb-stiffness: must be a positive factor, got {f}");
+        }
+        if args.bless {
+            bail!("--bless with --perturb-stiffness would store a broken model; refused");
+        }
+    }
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| root.join("target").join("validation"));
+    let scenes = load_scenes(&root.join("validation"))?;
+    let names: Vec<String> = scenes.keys().cloned().collect();
+    let tolerances = Tolerances::load(&root.join("validation/tolerances.json"), &names)?;
+    if let Some(s) = &args.scene
+        && !scenes.contains_key(s)
+    {
+        bail!(
+            "--scene {s}: no such scene in validation/ (scenes: {})",
+            names.join(", ")
+        );
+    }
+    let plan: Vec<(&Scene, Vec<&CheckSpec>)> = scenes
+        .iter()
+        .filter(|(name, _)| args.scene.as_ref().is_none_or(|s| s == *name))
+        .map(|(name, scene)| (scene, tolerances.scenes[name].selected(args.quick)))
+        .filter(|(_, checks)| !checks.is_empty())
+        .collect();
+    if plan.is_empty() {
+        bail!("no checks selected (is the scene's entry marked quick?)");
+    }
+    let provenance = Provenance::detect(&root);
+    let bar = progress_bar(plan.len());
+    let mut rows = Vec::new();
+    for (i, (scene, specs)) in plan.iter().enumerate() {
+        let ctx = SceneRun {
+            scene,
+            args,
+            out: out.join("runs").join(&scene.name),
+            golden_dir: root.join("golden"),
+            provenance: &provenance,
+            bar: &bar,
+            base: i as u64 * 1000,
+        };
+        let r = ctx.validate(specs);
+        for row in r.iter().filter(|r| r.status == report::Status::Fail) {
+            bar.println(format!(
+                "FAIL {} {} {}: {}",
+                row.scene, row.check, row.metric, row.note
+            ));
+        }
+        rows.extend(r);
+    }
+    bar.finish_and_clear();
+    let report = Report::new(provenance, args.quick, t0.elapsed().as_secs_f64(), rows);
+    report.write(&out)?;
+    Ok(report)
+}
+
+/// The scenes of `dir` (every `*.json` but `tolerances.json`), by file stem. A scene whose
+/// `name` differs from its file name is an error.
+fn load_scenes(dir: &Path) -> anyhow::Result<BTreeMap<String, Scene>> {
+    let mut scenes = BTreeMap::new();
+    for entry in std::fs::read_dir(dir).with_context(|| format!("listing {}", dir.display()))? {
+        let path = entry?.path();
+        if path.extension().is_none_or(|e| e != "json")
+            || path.file_name().is_some_and(|n| n == "tolerances.json")
+        {
+            continue;
+        }
+        let stem = path
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .context("scene file name is not UTF-8")?
+            .to_string();
+        let scene = Scene::load(&path).with_context(|| format!("{}", path.display()))?;
+        if scene.name != stem {
+            bail!(
+                "{}: the scene is named `{}`; name it after its file",
+                path.display(),
+                scene.name
+            );
+        }
+        scenes.insert(stem, scene);
+    }
+    Ok(scenes)
+}
+
+fn progress_bar(scenes: usize) -> ProgressBar {
+    let bar = ProgressBar::with_draw_target(
+        Some(scenes as u64 * 1000),
+        ProgressDrawTarget::stderr_with_hz(4),
+    );
+    bar.set_style(
+        ProgressStyle::with_template("{elapsed:>4} [{bar:30}] {msg}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar
+}
+
+/// `scene` with every Young's modulus multiplied by `factor`.
+pub fn perturbed(scene: &Scene, factor: f64) -> anyhow::Result<Scene> {
+    let mut file = scene.file.clone();
+    file.strand.core.youngs_modulus *= factor;
+    for l in &mut file.strand.layers {
+        l.youngs_modulus *= factor;
+    }
+    Scene::from_file(file).context("perturbing the scene")
+}
+
+/// The validation of one scene.
+struct SceneRun<'a> {
+    scene: &'a Scene,
+    args: &'a ValidateArgs,
+    out: PathBuf,
+    golden_dir: PathBuf,
+    provenance: &'a Provenance,
+    bar: &'a ProgressBar,
+    base: u64,
+}
+
+impl SceneRun<'_> {
+    /// Runs `scene` (perturbed if asked) into `dir` on the shared runner.
+    fn run(&self, scene: &Scene, dir: &Path, label: &str) -> anyhow::Result<Vec<RunSummary>> {
+        let scene = match self.args.perturb_stiffness {
+            Some(f) => perturbed(scene, f)?,
+            None => scene.clone(),
+        };
+        let opts = RunOptions {
+            out: dir.to_path_buf(),
+            vtk: false,
+        };
+        let (bar, base) = (self.bar, self.base);
+        let mut progress = |model: &str, f: f64| {
+            bar.set_message(format!("{label} {model}"));
+            bar.set_position(base + (f.clamp(0.0, 1.0) * 999.0) as u64);
+        };
+        run_scene(&scene, &opts, &mut progress).map_err(|e| anyhow::anyhow!("{e}"))
+    }
+
+    fn validate(&self, specs: &[&CheckSpec]) -> Vec<Row> {
+        let name = self.scene.name.clone();
+        let run = self.run(self.scene, &self.out, &name);
+        let summaries = match run {
+            Ok(s) => s,
+            Err(e) => {
+                return specs
+                    .iter()
+                    .map(|c| Row::failed(&name, c.name(), "-", format!("run failed: {e:#}")))
+                    .collect();
+            }
+        };
+        let summary = |m: &str| summaries.iter().find(|s| s.model == m);
+        let mut rows = Vec::new();
+        for spec in specs {
+            match spec {
+                CheckSpec::EquivalentVsElastica(t) | CheckSpec::TraditionalVsElastica(t) => {
+                    let kind = if matches!(spec, CheckSpec::EquivalentVsElastica(_)) {
+                        BeamKind::Equivalent
+                    } else {
+                        BeamKind::Traditional
+                    };
+                    let Some(s) = summary(kind.name()) else {
+                        rows.push(Row::failed(
+                            &name,
+                            spec.name(),
+                            "-",
+                            format!("the scene does not run the {} model", kind.name()),
+                        ));
+                        continue;
+                    };
+                    self.bar.set_message(format!("{name} elastica reference"));
+                    let reference = checks::elastica(self.scene, kind);
+                    rows.extend(checks::against_elastica(
+                        self.scene,
+                        kind,
+                        &self.out.join(kind.name()),
+                        s.tip,
+                        &reference,
+                        t,
+                    ));
+                }
+                CheckSpec::PaperTension(t) => {
+                    rows.extend(checks::paper_tension(
+                        &name,
+                        &self.out.join("equivalent"),
+                        t,
+                    ));
+                }
+                CheckSpec::EnergyBalance(t) => {
+                    let dynamic: Vec<&RunSummary> = summaries
+                        .iter()
+                        .filter(|s| s.analysis == "dynamic")
+                        .collect();
+                    if dynamic.is_empty() {
+                        rows.push(Row::failed(
+                            &name,
+                            spec.name(),
+                            "-",
+                            "the scene runs no dynamic model",
+                        ));
+                    }
+                    for s in dynamic {
+                        rows.push(checks::energy_balance(
+                            &name,
+                            &s.model,
+                            &self.out.join(&s.model),
+                            s.energy_balance_relative,
+                            t,
+                        ));
+                    }
+                }
+                CheckSpec::ConvergenceOrder(t) => rows.extend(self.convergence(t)),
+                CheckSpec::Golden(t) => {
+                    let length = self.scene.strand.length();
+                    let dynamic = matches!(self.scene.analysis, Analysis::Dynamic(_));
+                    let mut snaps = BTreeMap::new();
+                    let mut failed = Vec::new();
+                    for s in &summaries {
+                        match golden::ModelSnapshot::take(
+                            &self.out.join(&s.model),
+                            s.tip,
+                            length,
+                            dynamic,
+                        ) {
+                            Ok(snap) => {
+                                snaps.insert(s.model.clone(), snap);
+                            }
+                            Err(e) => failed.push(Row::failed(
+                                &name,
+                                spec.name(),
+                                &s.model,
+                                format!("{e:#}"),
+                            )),
+                        }
+                    }
+                    if !failed.is_empty() {
+                        rows.extend(failed);
+                        continue;
+                    }
+                    if self.args.bless {
+                        match golden::bless(&self.golden_dir, &name, self.provenance, t, snaps) {
+                            Ok(p) => rows.push(
+                                Row::measured(
+                                    &name,
+                                    spec.name(),
+                                    "-",
+                                    0.0,
+                                    "",
+                                    report::Bound::None,
+                                )
+                                .with_note(format!("blessed: wrote {}", p.display())),
+                            ),
+                            Err(e) => {
+                                rows.push(Row::failed(&name, spec.name(), "-", format!("{e:#}")))
+                            }
+                        }
+                    } else {
+                        rows.extend(golden::compare(&self.golden_dir, &name, t, &snaps));
+                    }
+                }
+                CheckSpec::EquivalentVsFine(_) => rows.push(Row::not_available(
+                    &name,
+                    spec.name(),
+                    "the fine model is not wired into the shared runner yet (`strand run` \
+                     skips it), so there is nothing to compare; this row is not a pass",
+                )),
+            }
+        }
+        rows
+    }
+
+    /// Statics of the equivalent model with n, 2n, 4n elements against the elastica: the
+    /// observed order of the largest distance between 2n and 4n.
+    fn convergence(&self, t: &ConvergenceTol) -> Vec<Row> {
+        const CHECK: &str = "convergence-order";
+        let name = self.scene.name.clone();
+        let fail = |why: String| vec![Row::failed(&name, CHECK, "order", why)];
+        let reference = match checks::elastica(self.scene, BeamKind::Equivalent) {
+            Ok(r) => r,
+            Err(e) => return fail(format!("reference: {e}")),
+        };
+        let mut errors = Vec::new();
+        for &n in &t.elements {
+            let mut file = self.scene.file.clone();
+            let Some(eq) = file.models.equivalent.as_mut() else {
+                return fail("the scene has no equivalent model".into());
+            };
+            eq.elements = n as i64;
+            file.models.traditional = None;
+            file.models.fine = None;
+            let scene = match Scene::from_file(file) {
+                Ok(s) => s,
+                Err(e) => return fail(format!("{n} elements: {e}")),
+            };
+            let dir = self.out.join("convergence").join(format!("n{n}"));
+            let label = format!("{name} convergence n={n}");
+            let summary = match self.run(&scene, &dir, &label) {
+                Ok(s) => s,
+                Err(e) => return fail(format!("{n} elements: {e:#}")),
+            };
+            let c = match results::Centerline::load(&dir.join("equivalent")) {
+                Ok(c) => c,
+                Err(e) => return fail(format!("{e:#}")),
+            };
+            errors.push(checks::distance(&c, summary[0].tip, &reference).max);
+        }
+        let order = checks::observed_order(errors[1], errors[2]);
+        let e = &t.elements;
+        vec![
+            Row::measured(
+                &name,
+                CHECK,
+                "order",
+                order,
+                "",
+                report::Bound::AtLeast(t.order),
+            )
+            .with_note(format!(
+                "largest distance to the elastica {:.2e}, {:.2e}, {:.2e} m at {}, {}, {} \
+                 elements (order {:.2} from the first pair)",
+                errors[0],
+                errors[1],
+                errors[2],
+                e[0],
+                e[1],
+                e[2],
+                checks::observed_order(errors[0], errors[1])
+            )),
+        ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(out: &str, perturb: Option<f64>) -> ValidateArgs {
+        ValidateArgs {
+            quick: true,
+            scene: Some("paper-fig7-g10".into()),
+            bless: false,
+            out: Some(std::env::temp_dir().join(format!("xtask-{out}-{}", std::process::id()))),
+            perturb_stiffness: perturb,
+        }
+    }
+
+    fn failing_checks(report: &Report) -> Vec<&str> {
+        report.failures().map(|r| r.check.as_str()).collect()
+    }
+
+    /// The harness can fail: 5 % stiffer wires in the model runs (not in the references) make
+    /// the elastica checks fail by name, while the unperturbed scene passes them.
+    #[test]
+    fn a_five_percent_stiffness_error_is_caught_by_name() {
+        let a = args("perturbed", Some(1.05));
+        let report = run(&a).unwrap();
+        let failed = failing_checks(&report);
+        assert!(report.failed());
+        assert!(
+            failed.contains(&"equivalent-vs-elastica")
+                && failed.contains(&"traditional-vs-elastica"),
+            "{failed:?}"
+        );
+        let md = std::fs::read_to_string(a.out.as_ref().unwrap().join("report.md")).unwrap();
+        assert!(md.contains("equivalent-vs-elastica max") && md.contains("FAIL"));
+
+        let b = args("control", None);
+        let report = run(&b).unwrap();
+        let failed = failing_checks(&report);
+        assert!(
+            !failed.iter().any(|c| c.ends_with("-vs-elastica")),
+            "unperturbed: {failed:?}"
+        );
+        for d in [a.out, b.out].into_iter().flatten() {
+            std::fs::remove_dir_all(d).unwrap();
+        }
+    }
+
+    #[test]
+    fn unknown_scene_is_named() {
+        let mut a = args("unknown", None);
+        a.scene = Some("no-such-scene".into());
+        let e = run(&a).unwrap_err().to_string();
+        assert!(
+            e.contains("no-such-scene") && e.contains("paper-fig7-g8"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn perturbation_scales_every_youngs_modulus() {
+        let scenes = load_scenes(&repo_root().join("validation")).unwrap();
+        let s = &scenes["paper-fig7-g8"];
+        let p = perturbed(s, 1.05).unwrap();
+        let (a, b) = (&s.file.strand, &p.file.strand);
+        assert_eq!(b.core.youngs_modulus, a.core.youngs_modulus * 1.05);
+        assert_eq!(
+            b.layers[0].youngs_modulus,
+            a.layers[0].youngs_modulus * 1.05
+        );
+        assert_eq!(b.core.density, a.core.density);
+    }
+}

@@ -1,0 +1,348 @@
+//! Rows of the validation table and the report files: the table on stdout,
+//! `report.md` and `report.json`.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use anyhow::Context;
+use serde::Serialize;
+
+use super::machine::Provenance;
+
+/// Which side of the tolerance passes.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Bound {
+    /// The value must not exceed the tolerance (an error).
+    AtMost(f64),
+    /// The value must reach the tolerance (an observed order).
+    AtLeast(f64),
+    /// No tolerance (the check could not run or reports information).
+    None,
+}
+
+/// Outcome of one row.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Status {
+    /// Within tolerance.
+    Pass,
+    /// Outside tolerance, or the check could not be evaluated.
+    Fail,
+    /// The check cannot run in this version: neither pass nor fail.
+    NotAvailable,
+}
+
+impl Status {
+    fn label(self) -> &'static str {
+        match self {
+            Status::Pass => "pass",
+            Status::Fail => "FAIL",
+            Status::NotAvailable => "not available",
+        }
+    }
+}
+
+/// One row of the table.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Row {
+    /// Scene name.
+    pub scene: String,
+    /// Check name (as in the tolerance file).
+    pub check: String,
+    /// What was measured (e.g. `max`, `tip`, `x=0.92`).
+    pub metric: String,
+    /// Measured value; `None` when it could not be measured.
+    pub value: Option<f64>,
+    /// Unit of value and tolerance.
+    pub unit: &'static str,
+    /// Tolerance.
+    pub bound: Bound,
+    /// Outcome.
+    pub status: Status,
+    /// Why it failed, what was compared, or why it is not available.
+    pub note: String,
+}
+
+impl Row {
+    /// A measured value judged against `bound`. A non-finite value fails.
+    pub fn measured(
+        scene: &str,
+        check: &str,
+        metric: &str,
+        value: f64,
+        unit: &'static str,
+        bound: Bound,
+    ) -> Row {
+        let ok = value.is_finite()
+            && match bound {
+                Bound::AtMost(t) => value <= t,
+                Bound::AtLeast(t) => value >= t,
+                Bound::None => true,
+            };
+        Row {
+            scene: scene.into(),
+            check: check.into(),
+            metric: metric.into(),
+            value: Some(value),
+            unit,
+            bound,
+            status: if ok { Status::Pass } else { Status::Fail },
+            note: String::new(),
+        }
+    }
+
+    /// A check that could not be evaluated: a failure saying why.
+    pub fn failed(scene: &str, check: &str, metric: &str, why: impl Into<String>) -> Row {
+        Row {
+            scene: scene.into(),
+            check: check.into(),
+            metric: metric.into(),
+            value: None,
+            unit: "",
+            bound: Bound::None,
+            status: Status::Fail,
+            note: why.into(),
+        }
+    }
+
+    /// A check this version cannot run.
+    pub fn not_available(scene: &str, check: &str, why: impl Into<String>) -> Row {
+        Row {
+            status: Status::NotAvailable,
+            ..Row::failed(scene, check, "-", why)
+        }
+    }
+
+    /// Adds a note.
+    pub fn with_note(mut self, note: impl Into<String>) -> Row {
+        self.note = note.into();
+        self
+    }
+
+    fn value_text(&self) -> String {
+        match self.value {
+            Some(v) => format!("{v:.3e}{}", unit_suffix(self.unit)),
+            None => "-".into(),
+        }
+    }
+
+    fn bound_text(&self) -> String {
+        match self.bound {
+            Bound::AtMost(t) => format!("<= {t:.1e}{}", unit_suffix(self.unit)),
+            Bound::AtLeast(t) => format!(">= {t:.2}{}", unit_suffix(self.unit)),
+            Bound::None => "-".into(),
+        }
+    }
+
+    fn check_text(&self) -> String {
+        if self.metric == "-" {
+            self.check.clone()
+        } else {
+            format!("{} {}", self.check, self.metric)
+        }
+    }
+}
+
+fn unit_suffix(unit: &str) -> String {
+    if unit.is_empty() {
+        String::new()
+    } else {
+        format!(" {unit}")
+    }
+}
+
+/// Counts of the outcomes.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+pub struct Counts {
+    /// Rows that passed.
+    pub pass: usize,
+    /// Rows that failed.
+    pub fail: usize,
+    /// Rows not available in this version.
+    pub not_available: usize,
+}
+
+/// The whole validation result.
+#[derive(Debug, Clone, Serialize)]
+pub struct Report {
+    /// Machine, commit, build profile and command.
+    pub provenance: Provenance,
+    /// Whether this was the `--quick` subset.
+    pub quick: bool,
+    /// Wall time of the whole validation (s).
+    pub wall_time_s: f64,
+    /// Outcome counts.
+    pub counts: Counts,
+    /// The rows.
+    pub rows: Vec<Row>,
+}
+
+impl Report {
+    /// Builds the report and counts the outcomes.
+    pub fn new(provenance: Provenance, quick: bool, wall_time_s: f64, rows: Vec<Row>) -> Report {
+        let mut counts = Counts::default();
+        for r in &rows {
+            match r.status {
+                Status::Pass => counts.pass += 1,
+                Status::Fail => counts.fail += 1,
+                Status::NotAvailable => counts.not_available += 1,
+            }
+        }
+        Report {
+            provenance,
+            quick,
+            wall_time_s,
+            counts,
+            rows,
+        }
+    }
+
+    /// Whether any row failed.
+    pub fn failed(&self) -> bool {
+        self.counts.fail > 0
+    }
+
+    /// The failing rows.
+    pub fn failures(&self) -> impl Iterator<Item = &Row> {
+        self.rows.iter().filter(|r| r.status == Status::Fail)
+    }
+
+    /// The table as aligned plain text.
+    pub fn table(&self) -> String {
+        let head = ["scene", "check", "value", "tolerance", "result"];
+        let cells: Vec<[String; 5]> = self
+            .rows
+            .iter()
+            .map(|r| {
+                [
+                    r.scene.clone(),
+                    r.check_text(),
+                    r.value_text(),
+                    r.bound_text(),
+                    r.status.label().to_string(),
+                ]
+            })
+            .collect();
+        let mut width = head.map(str::len);
+        for c in &cells {
+            for (w, s) in width.iter_mut().zip(c) {
+                *w = (*w).max(s.chars().count());
+            }
+        }
+        let line = |c: &[String]| {
+            let mut s = String::new();
+            for (i, (v, w)) in c.iter().zip(width).enumerate() {
+                if i > 0 {
+                    s.push_str("  ");
+                }
+                if i == 2 || i == 3 {
+                    let _ = write!(s, "{v:>w$}");
+                } else {
+                    let _ = write!(s, "{v:<w$}");
+                }
+            }
+            s.trim_end().to_string()
+        };
+        let mut out = line(&head.map(String::from));
+        out.push('\n');
+        for c in &cells {
+            out.push_str(&line(c));
+            out.push('\n');
+        }
+        let notes = self.notes();
+        if !notes.is_empty() {
+            out.push_str("\nnotes:\n");
+            for n in notes {
+                out.push_str(&format!("  {n}\n"));
+            }
+        }
+        out.push_str(&self.summary_line());
+        out.push('\n');
+        out
+    }
+
+    fn notes(&self) -> Vec<String> {
+        self.rows
+            .iter()
+            .filter(|r| !r.note.is_empty())
+            .map(|r| format!("{} {}: {}", r.scene, r.check_text(), r.note))
+            .collect()
+    }
+
+    /// `N passed, M failed, K not available (T s)`.
+    pub fn summary_line(&self) -> String {
+        format!(
+            "{} passed, {} failed, {} not available ({:.1} s{})",
+            self.counts.pass,
+            self.counts.fail,
+            self.counts.not_available,
+            self.wall_time_s,
+            if self.quick { ", --quick" } else { "" }
+        )
+    }
+
+    /// The report as Markdown.
+    pub fn markdown(&self) -> String {
+        let p = &self.provenance;
+        let mut s = String::from("# Validation report\n\n");
+        let _ = writeln!(s, "* command: `{}`", p.command);
+        let _ = writeln!(s, "* commit: `{}`", p.commit);
+        let _ = writeln!(s, "* date: {}", p.date);
+        let _ = writeln!(s, "* build profile: {}", p.profile);
+        let _ = writeln!(s, "* machine: {}", p.machine.description());
+        let _ = writeln!(s, "* result: {}\n", self.summary_line());
+        s.push_str("| scene | check | value | tolerance | result |\n|---|---|---:|---:|---|\n");
+        for r in &self.rows {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} |",
+                r.scene,
+                r.check_text(),
+                r.value_text(),
+                r.bound_text(),
+                r.status.label()
+            );
+        }
+        let notes = self.notes();
+        if !notes.is_empty() {
+            s.push_str("\nNotes:\n\n");
+            for n in notes {
+                let _ = writeln!(s, "* {n}");
+            }
+        }
+        s
+    }
+
+    /// Writes `report.md` and `report.json` into `dir`.
+    pub fn write(&self, dir: &Path) -> anyhow::Result<()> {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+        let md = dir.join("report.md");
+        std::fs::write(&md, self.markdown())
+            .with_context(|| format!("writing {}", md.display()))?;
+        let js = dir.join("report.json");
+        let text = serde_json::to_string_pretty(self).context("serializing the report")?;
+        std::fs::write(&js, text + "\n").with_context(|| format!("writing {}", js.display()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bounds_judge_values() {
+        let r = Row::measured("s", "c", "m", 1.0, "m", Bound::AtMost(2.0));
+        assert_eq!(r.status, Status::Pass);
+        let r = Row::measured("s", "c", "m", 3.0, "m", Bound::AtMost(2.0));
+        assert_eq!(r.status, Status::Fail);
+        let r = Row::measured("s", "c", "order", 1.5, "", Bound::AtLeast(2.0));
+        assert_eq!(r.status, Status::Fail);
+        let r = Row::measured("s", "c", "m", f64::NAN, "m", Bound::AtMost(2.0));
+        assert_eq!(r.status, Status::Fail);
+        assert_eq!(
+            Row::not_available("s", "c", "why").status,
+            Status::NotAvailable
+        );
+    }
+}

@@ -1,0 +1,404 @@
+//! `validation/tolerances.json`: for every scene, the checks it runs, their tolerances and a
+//! one-line justification of each.
+//!
+//! The file maps scene names to entries:
+//!
+//! ```json
+//! { "paper-fig7-g8": { "quick": true,
+//!     "checks": { "equivalent-vs-elastica": { "max": 2e-3, "rms": 1e-3, "tip": 2e-3,
+//!                                             "why": "..." } } } }
+//! ```
+//!
+//! Scene names must be files of `validation/`, check names must be known (see [`CheckSpec`]),
+//! and every check must say `why`; anything else is an error that names the fault.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use anyhow::{Context, bail};
+use serde::{Deserialize, Serialize, de::DeserializeOwned};
+
+/// Names of the checks a tolerance entry may list.
+pub const CHECK_NAMES: [&str; 7] = [
+    "equivalent-vs-elastica",
+    "traditional-vs-elastica",
+    "paper-tension",
+    "energy-balance",
+    "convergence-order",
+    "golden",
+    "equivalent-vs-fine",
+];
+
+/// Configuration distance limits (m) between two centrelines at equal material coordinate.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct DistanceTol {
+    /// Largest distance over s.
+    pub max: f64,
+    /// Root mean square distance over the integration points.
+    pub rms: f64,
+    /// Tip distance.
+    pub tip: f64,
+    /// Why these limits.
+    pub why: String,
+    /// Run this check in `--quick` (default: the scene's setting).
+    #[serde(default)]
+    pub quick: Option<bool>,
+}
+
+/// One tension value the paper reports.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct TensionPoint {
+    /// Material coordinate (m).
+    pub x: f64,
+    /// The paper's tension there (N).
+    pub paper: f64,
+}
+
+/// Tension against values read off the paper, as a relative error limit.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct TensionTol {
+    /// Largest relative error |T - T_paper| / T_paper.
+    pub relative: f64,
+    /// The paper's values.
+    pub points: Vec<TensionPoint>,
+    /// Why this limit.
+    pub why: String,
+    /// Run this check in `--quick`.
+    #[serde(default)]
+    pub quick: Option<bool>,
+}
+
+/// Energy balance error relative to the largest kinetic energy.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct EnergyTol {
+    /// Largest relative balance error.
+    pub relative: f64,
+    /// Why this limit.
+    pub why: String,
+    /// Run this check in `--quick`.
+    #[serde(default)]
+    pub quick: Option<bool>,
+}
+
+/// Observed convergence order of the equivalent model's statics in elements.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ConvergenceTol {
+    /// Element counts n, 2n, 4n (three, each doubling the previous).
+    pub elements: Vec<usize>,
+    /// Smallest acceptable observed order log2(e(2n) / e(4n)) of the largest distance.
+    pub order: f64,
+    /// Why this limit.
+    pub why: String,
+    /// Run this check in `--quick`.
+    #[serde(default)]
+    pub quick: Option<bool>,
+}
+
+/// Regression against the stored golden results.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct GoldenTol {
+    /// Largest position difference (m).
+    pub position: f64,
+    /// Largest energy difference (J, dynamics).
+    pub energy: f64,
+    /// Why these limits.
+    pub why: String,
+    /// Run this check in `--quick`.
+    #[serde(default)]
+    pub quick: Option<bool>,
+}
+
+/// A check of a scene with its tolerance.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CheckSpec {
+    /// Equivalent model statics against the elastica with the same section law.
+    EquivalentVsElastica(DistanceTol),
+    /// Traditional model statics against the elastica with constant EI.
+    TraditionalVsElastica(DistanceTol),
+    /// Equivalent model tension against the paper's values.
+    PaperTension(TensionTol),
+    /// Energy balance of every model's dynamics.
+    EnergyBalance(EnergyTol),
+    /// Convergence order in elements of the equivalent model's statics.
+    ConvergenceOrder(ConvergenceTol),
+    /// Regression against `golden/`.
+    Golden(GoldenTol),
+    /// Equivalent model against the fine model.
+    EquivalentVsFine(DistanceTol),
+}
+
+impl CheckSpec {
+    /// The check's name in the tolerance file and the report.
+    pub fn name(&self) -> &'static str {
+        match self {
+            CheckSpec::EquivalentVsElastica(_) => "equivalent-vs-elastica",
+            CheckSpec::TraditionalVsElastica(_) => "traditional-vs-elastica",
+            CheckSpec::PaperTension(_) => "paper-tension",
+            CheckSpec::EnergyBalance(_) => "energy-balance",
+            CheckSpec::ConvergenceOrder(_) => "convergence-order",
+            CheckSpec::Golden(_) => "golden",
+            CheckSpec::EquivalentVsFine(_) => "equivalent-vs-fine",
+        }
+    }
+
+    fn quick(&self) -> Option<bool> {
+        match self {
+            CheckSpec::EquivalentVsElastica(t)
+            | CheckSpec::TraditionalVsElastica(t)
+            | CheckSpec::EquivalentVsFine(t) => t.quick,
+            CheckSpec::PaperTension(t) => t.quick,
+            CheckSpec::EnergyBalance(t) => t.quick,
+            CheckSpec::ConvergenceOrder(t) => t.quick,
+            CheckSpec::Golden(t) => t.quick,
+        }
+    }
+
+    /// The one-line justification of the tolerance.
+    pub fn why(&self) -> &str {
+        match self {
+            CheckSpec::EquivalentVsElastica(t)
+            | CheckSpec::TraditionalVsElastica(t)
+            | CheckSpec::EquivalentVsFine(t) => &t.why,
+            CheckSpec::PaperTension(t) => &t.why,
+            CheckSpec::EnergyBalance(t) => &t.why,
+            CheckSpec::ConvergenceOrder(t) => &t.why,
+            CheckSpec::Golden(t) => &t.why,
+        }
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneEntryFile {
+    #[serde(default)]
+    quick: bool,
+    checks: BTreeMap<String, serde_json::Value>,
+}
+
+/// The checks of one scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneEntry {
+    /// Whether the scene belongs to the `--quick` subset.
+    pub quick: bool,
+    /// Its checks, in the order of [`CHECK_NAMES`].
+    pub checks: Vec<CheckSpec>,
+}
+
+impl SceneEntry {
+    /// The checks to run: all, or in `--quick` those of a quick scene not marked
+    /// `"quick": false`.
+    pub fn selected(&self, quick: bool) -> Vec<&CheckSpec> {
+        self.checks
+            .iter()
+            .filter(|c| !quick || c.quick().unwrap_or(self.quick))
+            .collect()
+    }
+}
+
+/// The parsed tolerance file: scene name to its checks.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tolerances {
+    /// Entries by scene name.
+    pub scenes: BTreeMap<String, SceneEntry>,
+}
+
+fn typed<T: DeserializeOwned>(scene: &str, check: &str, v: serde_json::Value) -> anyhow::Result<T> {
+    serde_json::from_value(v).with_context(|| format!("{scene}.checks.{check}"))
+}
+
+fn positive(value: f64, at: &str) -> anyhow::Result<()> {
+    if !(value.is_finite() && value > 0.0) {
+        bail!("{at}: must be a positive number, got {value}");
+    }
+    Ok(())
+}
+
+impl Tolerances {
+    /// Parses `text`; `known_scenes` are the scene names found in `validation/`. Every known
+    /// scene needs an entry, and every entry a known scene.
+    pub fn parse(text: &str, known_scenes: &[String]) -> anyhow::Result<Tolerances> {
+        let raw: BTreeMap<String, SceneEntryFile> =
+            serde_json::from_str(text).context("parsing the tolerance file")?;
+        let unknown: Vec<&String> = raw.keys().filter(|k| !known_scenes.contains(k)).collect();
+        if !unknown.is_empty() {
+            bail!(
+                "unknown scene(s) in the tolerance file: {} (the scenes of validation/ are: {})",
+                join(&unknown),
+                known_scenes.join(", ")
+            );
+        }
+        let missing: Vec<&String> = known_scenes
+            .iter()
+            .filter(|k| !raw.contains_key(*k))
+            .collect();
+        if !missing.is_empty() {
+            bail!(
+                "scene(s) without an entry in the tolerance file: {}",
+                join(&missing)
+            );
+        }
+        let mut scenes = BTreeMap::new();
+        for (scene, entry) in raw {
+            let mut checks = Vec::new();
+            let bad: Vec<&String> = entry
+                .checks
+                .keys()
+                .filter(|k| !CHECK_NAMES.contains(&k.as_str()))
+                .collect();
+            if !bad.is_empty() {
+                bail!(
+                    "{scene}: unknown check(s) {} (known: {})",
+                    join(&bad),
+                    CHECK_NAMES.join(", ")
+                );
+            }
+            let mut by_name = entry.checks;
+            for name in CHECK_NAMES {
+                let Some(v) = by_name.remove(name) else {
+                    continue;
+                };
+                let spec = match name {
+                    "equivalent-vs-elastica" => {
+                        CheckSpec::EquivalentVsElastica(typed(&scene, name, v)?)
+                    }
+                    "traditional-vs-elastica" => {
+                        CheckSpec::TraditionalVsElastica(typed(&scene, name, v)?)
+                    }
+                    "paper-tension" => CheckSpec::PaperTension(typed(&scene, name, v)?),
+                    "energy-balance" => CheckSpec::EnergyBalance(typed(&scene, name, v)?),
+                    "convergence-order" => CheckSpec::ConvergenceOrder(typed(&scene, name, v)?),
+                    "golden" => CheckSpec::Golden(typed(&scene, name, v)?),
+                    "equivalent-vs-fine" => CheckSpec::EquivalentVsFine(typed(&scene, name, v)?),
+                    _ => unreachable!("names checked above"),
+                };
+                validate_spec(&scene, &spec)?;
+                checks.push(spec);
+            }
+            scenes.insert(
+                scene,
+                SceneEntry {
+                    quick: entry.quick,
+                    checks,
+                },
+            );
+        }
+        Ok(Tolerances { scenes })
+    }
+
+    /// Reads and parses `path`.
+    pub fn load(path: &Path, known_scenes: &[String]) -> anyhow::Result<Tolerances> {
+        let text =
+            std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+        Tolerances::parse(&text, known_scenes).with_context(|| format!("in {}", path.display()))
+    }
+}
+
+fn validate_spec(scene: &str, spec: &CheckSpec) -> anyhow::Result<()> {
+    let at = |f: &str| format!("{scene}.checks.{}.{f}", spec.name());
+    if spec.why().trim().is_empty() {
+        bail!("{}: must say why the tolerance is what it is", at("why"));
+    }
+    match spec {
+        CheckSpec::EquivalentVsElastica(t)
+        | CheckSpec::TraditionalVsElastica(t)
+        | CheckSpec::EquivalentVsFine(t) => {
+            positive(t.max, &at("max"))?;
+            positive(t.rms, &at("rms"))?;
+            positive(t.tip, &at("tip"))?;
+        }
+        CheckSpec::PaperTension(t) => {
+            positive(t.relative, &at("relative"))?;
+            if t.points.is_empty() {
+                bail!("{}: needs at least one point", at("points"));
+            }
+            for (i, p) in t.points.iter().enumerate() {
+                positive(p.paper, &at(&format!("points[{i}].paper")))?;
+            }
+        }
+        CheckSpec::EnergyBalance(t) => positive(t.relative, &at("relative"))?,
+        CheckSpec::ConvergenceOrder(t) => {
+            positive(t.order, &at("order"))?;
+            let e = &t.elements;
+            if e.len() != 3 || e[0] == 0 || e[1] != 2 * e[0] || e[2] != 2 * e[1] {
+                bail!(
+                    "{}: must be three element counts n, 2n, 4n, got {e:?}",
+                    at("elements")
+                );
+            }
+        }
+        CheckSpec::Golden(t) => {
+            positive(t.position, &at("position"))?;
+            positive(t.energy, &at("energy"))?;
+        }
+    }
+    Ok(())
+}
+
+fn join(names: &[&String]) -> String {
+    names
+        .iter()
+        .map(|s| format!("`{s}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scenes() -> Vec<String> {
+        vec!["a".into(), "b".into()]
+    }
+
+    const GOOD: &str = r#"{
+        "a": { "quick": true, "checks": {
+            "golden": { "position": 1e-6, "energy": 1e-6, "why": "round-off" },
+            "equivalent-vs-fine": { "max": 1e-3, "rms": 1e-3, "tip": 1e-3, "why": "paper",
+                                    "quick": false } } },
+        "b": { "checks": { "energy-balance": { "relative": 1e-3, "why": "integrator" } } }
+    }"#;
+
+    #[test]
+    fn parses_and_selects_the_quick_subset() {
+        let t = Tolerances::parse(GOOD, &scenes()).unwrap();
+        let a = &t.scenes["a"];
+        assert_eq!(a.checks.len(), 2);
+        let quick: Vec<_> = a.selected(true).iter().map(|c| c.name()).collect();
+        assert_eq!(quick, ["golden"]);
+        assert_eq!(a.selected(false).len(), 2);
+        assert!(t.scenes["b"].selected(true).is_empty());
+    }
+
+    #[test]
+    fn unknown_scene_and_check_names_are_named() {
+        let more = vec!["a".into()];
+        let e = Tolerances::parse(GOOD, &more).unwrap_err().to_string();
+        assert!(e.contains("unknown scene(s)") && e.contains("`b`"), "{e}");
+        let e = Tolerances::parse(GOOD, &["a".into(), "b".into(), "c".into()])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("without an entry") && e.contains("`c`"), "{e}");
+        let bad = GOOD.replace("energy-balance", "energy-balanse");
+        let e = Tolerances::parse(&bad, &scenes()).unwrap_err().to_string();
+        assert!(e.contains("b: unknown check(s) `energy-balanse`"), "{e}");
+    }
+
+    #[test]
+    fn fields_are_checked_with_their_path() {
+        let bad = GOOD.replace("\"relative\": 1e-3", "\"relativ\": 1e-3");
+        let e = format!("{:#}", Tolerances::parse(&bad, &scenes()).unwrap_err());
+        assert!(
+            e.contains("b.checks.energy-balance") && e.contains("relativ"),
+            "{e}"
+        );
+        let bad = GOOD.replace("\"why\": \"integrator\"", "\"why\": \" \"");
+        let e = Tolerances::parse(&bad, &scenes()).unwrap_err().to_string();
+        assert!(e.contains("b.checks.energy-balance.why"), "{e}");
+    }
+}
