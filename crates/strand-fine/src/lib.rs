@@ -8,9 +8,9 @@
 //! * [`chain`]: a wire laid as a segment chain; [`joint`]: the joint springs.
 //! * [`model`]: wires, supports, gravity, state, loads and energies.
 //! * [`statics`]: Newton-Raphson static equilibrium; [`dynamics`]: symplectic time stepping.
-//!
+//! * [`contact`]: wire-to-core contact (penalty and Cundall-Strack friction with history),
+//!   added to a model by [`FineModel::add_contacts`].
 //! * [`bending`]: the virtual bending test (moment against curvature under tension).
-//! * [`contact`]: wire-to-core contact (penalty and Cundall-Strack friction with history).
 //!
 //! Units are SI throughout (m, kg, s, N, rad).
 //!
@@ -23,7 +23,8 @@
 //!   position only); with them the cantilever converges at second order in the segment
 //!   length.
 //! * Element tangents are central differences of the exact element loads (12 x 12 per
-//!   joint); the static solve factors their assembly with a sparse LU.
+//!   joint or contact, contact histories frozen); the static solve factors their assembly
+//!   with a sparse LU. The explicit stable step bounds contacts as closed springs.
 //! * Loads are computed in parallel over wires; each wire's loads depend on that wire (and,
 //!   for contacts, on the core's poses) only, and the core's share of the contact loads is
 //!   summed in a fixed order, so results are identical for any number of threads.

@@ -356,3 +356,57 @@ fn strand_cantilever_with_contacts_reaches_equilibrium() {
     );
     assert!(tip.y < -0.05, "the strand hangs down");
 }
+
+/// The paper's Fig. 8 pendulum with contacts: 7 wires x 77 segments, Table 1 strand,
+/// released horizontal under gravity 9.8065 m/s^2 for 0.5 s; wall time and throughput.
+#[test]
+#[ignore = "speed study, about 1-2 min per boundary condition"]
+fn fig8_pendulum_speed() {
+    for support in [Support::Clamped, Support::Pinned] {
+        let s = strand(0.4, 0.3);
+        let mut m = FineModel::from_strand(
+            &s,
+            Discretisation {
+                core_segments: 77,
+                wire_segments: 77,
+            },
+            support,
+            Support::Free,
+        );
+        m.add_contacts(&s, &ContactOptions::default());
+        m.gravity = Vector3::new(0.0, -9.8065, 0.0);
+        let mut state = m.rest_state();
+        let t0 = Instant::now();
+        let dt = stable_time_step(&m, &state, 0.9);
+        let mut int = Integrator::new(&m, &state, dt);
+        let e0 = int.energies(&m, &state);
+        let setup = t0.elapsed().as_secs_f64();
+        let steps = (0.5 / dt).ceil() as usize;
+        let (mut err, mut min_g) = (0.0f64, e0.gravity);
+        let t = Instant::now();
+        for k in 0..steps {
+            int.step(&m, &mut state);
+            if k % 100 == 0 || k + 1 == steps {
+                let e = int.energies(&m, &state);
+                err = err.max((e.balance() - e0.balance()).abs());
+                min_g = min_g.min(e.gravity);
+            }
+        }
+        let wall = t.elapsed().as_secs_f64();
+        let e = int.energies(&m, &state);
+        let tip = m.core_centreline(&state)[77];
+        println!(
+            "Fig. 8 {support:?}: dt = {dt:.3e} s, {steps} steps, wall {wall:.1} s (set-up {:.2} \
+             s), {:.3e} segment-steps/s on {} threads; max |E + W_f - E0| {:.2e} of the drop \
+             {:.3e} J; friction work {:.3e} J; tip at 0.5 s ({:.4}, {:.4}) m",
+            setup,
+            (steps * m.segment_count()) as f64 / wall,
+            rayon::current_num_threads(),
+            err / (e0.gravity - min_g),
+            e0.gravity - min_g,
+            e.friction_work,
+            tip.x,
+            tip.y
+        );
+    }
+}
