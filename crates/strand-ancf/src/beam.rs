@@ -11,6 +11,7 @@
 //!   with 2 points it is 1.2e-6 L (order 3.5) (`tests/statics.rs`). The strain used by the
 //!   section law for the wire tension is the assumed field `eps_bar`, linear through the two
 //!   axial points, so the friction limits see the strand's tension, not the parasitic strain.
+//!   The one zero-energy mode that two points leave is held by a weak penalty ([`HOURGLASS`]).
 //! * Bending term: the wire phases turn once per pitch P, and each wire switches between stick
 //!   and slip inside an element longer than P/2, so the default rule is composite: 3 Gauss points
 //!   on each of `ceil(4 l / P)` equal sub-intervals (a sub-interval spans at most a quarter
@@ -108,6 +109,8 @@ pub(crate) struct BendPoint {
 #[derive(Debug, Clone)]
 pub(crate) struct ElementRule {
     pub axial: Vec<QuadraturePoint>,
+    /// Shape row at the element midpoint (hourglass stabilization).
+    pub mid: ShapeRow,
     pub bend: Vec<BendPoint>,
 }
 
@@ -167,6 +170,14 @@ pub struct Beam {
 
 /// Gauss points of the reduced axial quadrature.
 pub const AXIAL_POINTS: usize = 2;
+
+/// Weight of the hourglass stabilization, relative to EA l. Two axial points leave one
+/// zero-energy mode per beam: a uniform change of the nodal slope lengths makes a strain
+/// shaped like the Legendre P2 that vanishes at both points (singular statics unless a clamp
+/// fixes a slope). A penalty `1/2 HOURGLASS EA l (eps(l/2) - eps_bar(l/2))^2` on the
+/// midpoint strain's departure from the assumed field gives it stiffness; it is small enough
+/// not to bring membrane locking back (`tests/statics.rs`).
+pub const HOURGLASS: f64 = 1e-6;
 
 impl Beam {
     /// Builds the beam of `spec` with section law `law` (its strand gives the length).
@@ -507,6 +518,7 @@ impl Beam {
         // Axial points: reduced quadrature.
         let mut eps_a = [0.0; AXIAL_POINTS];
         let mut eps_q = [PlanarVector::zeros(); AXIAL_POINTS];
+        let mut eps_h = [nalgebra::Matrix4::<f64>::zeros(); AXIAL_POINTS];
         for (j, ap) in rule.axial.iter().enumerate() {
             let pt = PlanarPoint::at(qe, &ap.row);
             let sec = |eps: f64| PlanarSection {
@@ -521,12 +533,44 @@ impl Beam {
                 planar::add_gradient(&mut f, ap.weight, &ap.row, &s2.force(&s));
                 planar::add_hessian(t, ap.weight, &ap.row, &s2.tangent(&s));
                 eps_q[j] = planar::scatter_gradient(&ap.row, &s2.first.eps_grad);
+                eps_h[j] = s2.eps_hess;
             } else {
                 let s1 = pt.first().map_err(kin)?;
                 eps_a[j] = s1.eps;
                 planar::add_gradient(&mut f, ap.weight, &ap.row, &s1.force(&sec(s1.eps)));
             }
             ev.energy += ap.weight * 0.5 * ea * eps_a[j] * eps_a[j];
+        }
+        // Hourglass stabilization at the midpoint (see [`HOURGLASS`]); the assumed field
+        // there is the mean of the axial points.
+        {
+            let c = HOURGLASS * ea * self.element_length;
+            let pt = PlanarPoint::at(qe, &rule.mid);
+            let mean = 1.0 / AXIAL_POINTS as f64;
+            if let Some(t) = tangent.as_deref_mut() {
+                let s2 = pt.second().map_err(kin)?;
+                let d = s2.first.eps - mean * eps_a.iter().sum::<f64>();
+                let mut g = planar::scatter_gradient(&rule.mid, &s2.first.eps_grad);
+                for eq in &eps_q {
+                    g -= eq * mean;
+                }
+                f += g * (c * d);
+                t.ger(c, &g, &g, 1.0);
+                planar::add_hessian(t, c * d, &rule.mid, &s2.eps_hess);
+                for (ap, hq) in rule.axial.iter().zip(&eps_h) {
+                    planar::add_hessian(t, -c * d * mean, &ap.row, hq);
+                }
+                ev.energy += 0.5 * c * d * d;
+            } else {
+                let s1 = pt.first().map_err(kin)?;
+                let d = s1.eps - mean * eps_a.iter().sum::<f64>();
+                planar::add_gradient(&mut f, c * d, &rule.mid, &s1.eps_grad);
+                for ap in &rule.axial {
+                    let e1 = PlanarPoint::at(qe, &ap.row).first().map_err(kin)?;
+                    planar::add_gradient(&mut f, -c * d * mean, &ap.row, &e1.eps_grad);
+                }
+                ev.energy += 0.5 * c * d * d;
+            }
         }
         // Bending points.
         let ws = if self.law.kind().has_state() {
@@ -634,6 +678,7 @@ impl Beam {
         let mut ev = Evaluation::default();
         let mut eps_a = [0.0; AXIAL_POINTS];
         let mut eps_q = [SpatialVector::zeros(); AXIAL_POINTS];
+        let mut eps_h = [nalgebra::Matrix6::<f64>::zeros(); AXIAL_POINTS];
         for (j, ap) in rule.axial.iter().enumerate() {
             let pt = SpatialPoint::at(qe, &ap.row);
             let sec = |eps: f64| SpatialSection {
@@ -648,12 +693,44 @@ impl Beam {
                 spatial::add_gradient(&mut f, ap.weight, &ap.row, &s2.force(&s));
                 spatial::add_hessian(t, ap.weight, &ap.row, &s2.tangent(&s));
                 eps_q[j] = spatial::scatter_gradient(&ap.row, &s2.first.eps_grad);
+                eps_h[j] = s2.eps_hess;
             } else {
                 let s1 = pt.first(frame).map_err(kin)?;
                 eps_a[j] = s1.eps;
                 spatial::add_gradient(&mut f, ap.weight, &ap.row, &s1.force(&sec(s1.eps)));
             }
             ev.energy += ap.weight * 0.5 * ea * eps_a[j] * eps_a[j];
+        }
+        // Hourglass stabilization at the midpoint (see [`HOURGLASS`]); the assumed field
+        // there is the mean of the axial points.
+        {
+            let c = HOURGLASS * ea * self.element_length;
+            let pt = SpatialPoint::at(qe, &rule.mid);
+            let mean = 1.0 / AXIAL_POINTS as f64;
+            if let Some(t) = tangent.as_deref_mut() {
+                let s2 = pt.second(frame).map_err(kin)?;
+                let d = s2.first.eps - mean * eps_a.iter().sum::<f64>();
+                let mut g = spatial::scatter_gradient(&rule.mid, &s2.first.eps_grad);
+                for eq in &eps_q {
+                    g -= eq * mean;
+                }
+                f += g * (c * d);
+                t.ger(c, &g, &g, 1.0);
+                spatial::add_hessian(t, c * d, &rule.mid, &s2.eps_hess);
+                for (ap, hq) in rule.axial.iter().zip(&eps_h) {
+                    spatial::add_hessian(t, -c * d * mean, &ap.row, hq);
+                }
+                ev.energy += 0.5 * c * d * d;
+            } else {
+                let s1 = pt.first(frame).map_err(kin)?;
+                let d = s1.eps - mean * eps_a.iter().sum::<f64>();
+                spatial::add_gradient(&mut f, c * d, &rule.mid, &s1.eps_grad);
+                for ap in &rule.axial {
+                    let e1 = SpatialPoint::at(qe, &ap.row).first(frame).map_err(kin)?;
+                    spatial::add_gradient(&mut f, -c * d * mean, &ap.row, &e1.eps_grad);
+                }
+                ev.energy += 0.5 * c * d * d;
+            }
         }
         let ws = if self.law.kind().has_state() {
             self.wires
@@ -796,5 +873,9 @@ fn element_rule(
             }
         })
         .collect();
-    Ok(ElementRule { axial, bend })
+    Ok(ElementRule {
+        axial,
+        mid: ShapeRow::new(0.5 * l, l),
+        bend,
+    })
 }

@@ -250,3 +250,42 @@ fn paper_section3_tension_stiffness_and_sag() {
         "traditional sags less in X and Y"
     );
 }
+
+/// Supports at both ends: pinned-pinned and clamped-clamped beams under a small uniform
+/// load deflect 5 q L^4 / (384 EI) and q L^4 / (384 EI) at midspan (within 0.5 %).
+#[test]
+fn supports_at_both_ends() {
+    let s = strand(1.0, 2.0e8, 7801.0, false);
+    for (support, factor) in [(Support::Pinned, 5.0), (Support::Clamped, 1.0)] {
+        // EA/EI = 1e5: the membrane stretch of the deflected beam changes the midspan
+        // deflection by about 5e-6 relative, and the axial round-off (EA eps_mach = 1e-11 N)
+        // stays far below the load.
+        let law = SectionLaw::constant(&s, 1.0, 1.0e5);
+        let q = 1e-3;
+        let beam = Beam::new(
+            BeamSpec {
+                elements: 8,
+                bending_points: None,
+                mass_per_length: 1.0,
+                element: ElementKind::Planar,
+                direction: [1.0, 0.0, 0.0],
+                gravity: [0.0, -q, 0.0],
+                start: Some(support),
+                end: Some(support),
+            },
+            law,
+        )
+        .unwrap();
+        let sol = solve_static(&beam, &StaticOptions::default(), &mut |_| {}).unwrap();
+        let (mid, _) = beam.sample(&sol.q, 0.5);
+        let want = factor * q / 384.0;
+        let rel = (-mid[1] - want).abs() / want;
+        println!(
+            "{support:?} at both ends: midspan {:.6e} vs {want:.6e} ({rel:.2e})",
+            -mid[1]
+        );
+        assert!(rel < 5e-3, "{support:?}: {} vs {want}", -mid[1]);
+        let (end, _) = beam.sample(&sol.q, 1.0);
+        assert!((end[0] - 1.0).abs() < 1e-15 && end[1].abs() < 1e-15);
+    }
+}
