@@ -47,23 +47,32 @@ pub struct Distance {
     pub rms: f64,
     /// Tip distance (m).
     pub tip: f64,
+    /// Material coordinate of the largest distance (m).
+    pub at: f64,
 }
 
 /// Distance of the centreline `c` with tip `tip` from the elastica solution `r`.
 pub fn distance(c: &Centerline, tip: [f64; 3], r: &Solution) -> Distance {
     let mut max: f64 = 0.0;
+    let mut at = 0.0;
     let mut sum = 0.0;
     for i in 0..c.s.len() {
         let p = r.position(c.s[i]);
         let d = (c.x[i] - p[0]).hypot(c.y[i] - p[1]);
-        max = max.max(d);
+        if d > max {
+            (max, at) = (d, c.s[i]);
+        }
         sum += d * d;
     }
     let tip = (tip[0] - r.tip[0]).hypot(tip[1] - r.tip[1]);
+    if tip > max {
+        (max, at) = (tip, r.problem.length);
+    }
     Distance {
-        max: max.max(tip),
+        max,
         rms: (sum / c.s.len() as f64).sqrt(),
         tip,
+        at,
     }
 }
 
@@ -138,10 +147,11 @@ pub fn against_elastica(
     };
     match Centerline::load(dir) {
         Ok(c) => {
-            let mut rows = distance_rows(name, &check, &distance(&c, tip, r), tol);
+            let d = distance(&c, tip, r);
+            let mut rows = distance_rows(name, &check, &d, tol);
             rows[0].note = format!(
-                "elastica error estimate {:.1e} m, {} continuation steps",
-                r.error.position, r.continuation_steps
+                "largest at s = {:.3} m; elastica error estimate {:.1e} m, {} continuation steps",
+                d.at, r.error.position, r.continuation_steps
             );
             rows
         }

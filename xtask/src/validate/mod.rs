@@ -211,122 +211,122 @@ impl SceneRun<'_> {
                     .collect();
             }
         };
-        let summary = |m: &str| summaries.iter().find(|s| s.model == m);
         let mut rows = Vec::new();
         for spec in specs {
-            match spec {
-                CheckSpec::EquivalentVsElastica(t) | CheckSpec::TraditionalVsElastica(t) => {
-                    let kind = if matches!(spec, CheckSpec::EquivalentVsElastica(_)) {
-                        BeamKind::Equivalent
-                    } else {
-                        BeamKind::Traditional
-                    };
-                    let Some(s) = summary(kind.name()) else {
-                        rows.push(Row::failed(
-                            &name,
-                            spec.name(),
-                            "-",
-                            format!("the scene does not run the {} model", kind.name()),
-                        ));
-                        continue;
-                    };
-                    self.bar.set_message(format!("{name} elastica reference"));
-                    let reference = checks::elastica(self.scene, kind);
-                    rows.extend(checks::against_elastica(
-                        self.scene,
-                        kind,
-                        &self.out.join(kind.name()),
-                        s.tip,
-                        &reference,
-                        t,
-                    ));
-                }
-                CheckSpec::PaperTension(t) => {
-                    rows.extend(checks::paper_tension(
-                        &name,
-                        &self.out.join("equivalent"),
-                        t,
-                    ));
-                }
-                CheckSpec::EnergyBalance(t) => {
-                    let dynamic: Vec<&RunSummary> = summaries
-                        .iter()
-                        .filter(|s| s.analysis == "dynamic")
-                        .collect();
-                    if dynamic.is_empty() {
-                        rows.push(Row::failed(
-                            &name,
-                            spec.name(),
-                            "-",
-                            "the scene runs no dynamic model",
-                        ));
-                    }
-                    for s in dynamic {
-                        rows.push(checks::energy_balance(
-                            &name,
-                            &s.model,
-                            &self.out.join(&s.model),
-                            s.energy_balance_relative,
-                            t,
-                        ));
-                    }
-                }
-                CheckSpec::ConvergenceOrder(t) => rows.extend(self.convergence(t)),
-                CheckSpec::Golden(t) => {
-                    let length = self.scene.strand.length();
-                    let dynamic = matches!(self.scene.analysis, Analysis::Dynamic(_));
-                    let mut snaps = BTreeMap::new();
-                    let mut failed = Vec::new();
-                    for s in &summaries {
-                        match golden::ModelSnapshot::take(
-                            &self.out.join(&s.model),
-                            s.tip,
-                            length,
-                            dynamic,
-                        ) {
-                            Ok(snap) => {
-                                snaps.insert(s.model.clone(), snap);
-                            }
-                            Err(e) => failed.push(Row::failed(
-                                &name,
-                                spec.name(),
-                                &s.model,
-                                format!("{e:#}"),
-                            )),
-                        }
-                    }
-                    if !failed.is_empty() {
-                        rows.extend(failed);
-                        continue;
-                    }
-                    if self.args.bless {
-                        match golden::bless(&self.golden_dir, &name, self.provenance, t, snaps) {
-                            Ok(p) => rows.push(
-                                Row::measured(
-                                    &name,
-                                    spec.name(),
-                                    "-",
-                                    0.0,
-                                    "",
-                                    report::Bound::None,
-                                )
-                                .with_note(format!("blessed: wrote {}", p.display())),
-                            ),
-                            Err(e) => {
-                                rows.push(Row::failed(&name, spec.name(), "-", format!("{e:#}")))
-                            }
-                        }
-                    } else {
-                        rows.extend(golden::compare(&self.golden_dir, &name, t, &snaps));
-                    }
-                }
-                CheckSpec::EquivalentVsFine(_) => rows.push(Row::not_available(
-                    &name,
-                    spec.name(),
-                    "the fine model is not wired into the shared runner yet (`strand run` \
-                     skips it), so there is nothing to compare; this row is not a pass",
-                )),
+            let mut r = self.apply(spec, &summaries);
+            for row in &mut r {
+                row.why = spec.why().to_string();
             }
+            rows.extend(r);
+        }
+        rows
+    }
+
+    /// The rows of one check on the scene's run.
+    fn apply(&self, spec: &CheckSpec, summaries: &[RunSummary]) -> Vec<Row> {
+        let name = self.scene.name.clone();
+        let summary = |m: &str| summaries.iter().find(|s| s.model == m);
+        let mut rows = Vec::new();
+        match spec {
+            CheckSpec::EquivalentVsElastica(t) | CheckSpec::TraditionalVsElastica(t) => {
+                let kind = if matches!(spec, CheckSpec::EquivalentVsElastica(_)) {
+                    BeamKind::Equivalent
+                } else {
+                    BeamKind::Traditional
+                };
+                let Some(s) = summary(kind.name()) else {
+                    rows.push(Row::failed(
+                        &name,
+                        spec.name(),
+                        "-",
+                        format!("the scene does not run the {} model", kind.name()),
+                    ));
+                    return rows;
+                };
+                self.bar.set_message(format!("{name} elastica reference"));
+                let reference = checks::elastica(self.scene, kind);
+                rows.extend(checks::against_elastica(
+                    self.scene,
+                    kind,
+                    &self.out.join(kind.name()),
+                    s.tip,
+                    &reference,
+                    t,
+                ));
+            }
+            CheckSpec::PaperTension(t) => {
+                rows.extend(checks::paper_tension(
+                    &name,
+                    &self.out.join("equivalent"),
+                    t,
+                ));
+            }
+            CheckSpec::EnergyBalance(t) => {
+                let dynamic: Vec<&RunSummary> = summaries
+                    .iter()
+                    .filter(|s| s.analysis == "dynamic")
+                    .collect();
+                if dynamic.is_empty() {
+                    rows.push(Row::failed(
+                        &name,
+                        spec.name(),
+                        "-",
+                        "the scene runs no dynamic model",
+                    ));
+                }
+                for s in dynamic {
+                    rows.push(checks::energy_balance(
+                        &name,
+                        &s.model,
+                        &self.out.join(&s.model),
+                        s.energy_balance_relative,
+                        t,
+                    ));
+                }
+            }
+            CheckSpec::ConvergenceOrder(t) => rows.extend(self.convergence(t)),
+            CheckSpec::Golden(t) => {
+                let length = self.scene.strand.length();
+                let dynamic = matches!(self.scene.analysis, Analysis::Dynamic(_));
+                let mut snaps = BTreeMap::new();
+                let mut failed = Vec::new();
+                for s in summaries {
+                    match golden::ModelSnapshot::take(
+                        &self.out.join(&s.model),
+                        s.tip,
+                        length,
+                        dynamic,
+                    ) {
+                        Ok(snap) => {
+                            snaps.insert(s.model.clone(), snap);
+                        }
+                        Err(e) => {
+                            failed.push(Row::failed(&name, spec.name(), &s.model, format!("{e:#}")))
+                        }
+                    }
+                }
+                if !failed.is_empty() {
+                    rows.extend(failed);
+                    return rows;
+                }
+                if self.args.bless {
+                    match golden::bless(&self.golden_dir, &name, self.provenance, t, snaps) {
+                        Ok(p) => rows.push(
+                            Row::measured(&name, spec.name(), "-", 0.0, "", report::Bound::None)
+                                .with_note(format!("blessed: wrote {}", p.display())),
+                        ),
+                        Err(e) => rows.push(Row::failed(&name, spec.name(), "-", format!("{e:#}"))),
+                    }
+                } else {
+                    rows.extend(golden::compare(&self.golden_dir, &name, t, &snaps));
+                }
+            }
+            CheckSpec::EquivalentVsFine(_) => rows.push(Row::not_available(
+                &name,
+                spec.name(),
+                "the fine model is not wired into the shared runner yet (`strand run` \
+                 skips it), so there is nothing to compare; this row is not a pass",
+            )),
         }
         rows
     }

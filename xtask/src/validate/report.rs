@@ -62,6 +62,8 @@ pub struct Row {
     pub status: Status,
     /// Why it failed, what was compared, or why it is not available.
     pub note: String,
+    /// Why the tolerance is what it is (from the tolerance file).
+    pub why: String,
 }
 
 impl Row {
@@ -89,6 +91,7 @@ impl Row {
             bound,
             status: if ok { Status::Pass } else { Status::Fail },
             note: String::new(),
+            why: String::new(),
         }
     }
 
@@ -103,6 +106,7 @@ impl Row {
             bound: Bound::None,
             status: Status::Fail,
             note: why.into(),
+            why: String::new(),
         }
     }
 
@@ -309,6 +313,14 @@ impl Report {
             s.push_str("\nNotes:\n\n");
             for n in notes {
                 let _ = writeln!(s, "* {n}");
+            }
+        }
+        s.push_str("\nWhy these tolerances (`validation/tolerances.json`):\n\n");
+        let mut seen: Vec<(&str, &str)> = Vec::new();
+        for r in self.rows.iter().filter(|r| !r.why.is_empty()) {
+            if !seen.contains(&(&r.scene, &r.check)) {
+                seen.push((&r.scene, &r.check));
+                let _ = writeln!(s, "* {} {}: {}", r.scene, r.check, r.why);
             }
         }
         s
