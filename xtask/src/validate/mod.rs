@@ -4,6 +4,7 @@
 //! `target/validation/report.{md,json}`.
 
 pub mod checks;
+pub mod compare;
 pub mod golden;
 pub mod machine;
 pub mod report;
@@ -311,22 +312,38 @@ impl SceneRun<'_> {
                 }
                 if self.args.bless {
                     match golden::bless(&self.golden_dir, &name, self.provenance, t, snaps) {
-                        Ok(p) => rows.push(
-                            Row::measured(&name, spec.name(), "-", 0.0, "", report::Bound::None)
-                                .with_note(format!("blessed: wrote {}", p.display())),
-                        ),
+                        Ok(p) => rows.push(Row::done(
+                            &name,
+                            spec.name(),
+                            format!("blessed: wrote {}", p.display()),
+                        )),
                         Err(e) => rows.push(Row::failed(&name, spec.name(), "-", format!("{e:#}"))),
                     }
                 } else {
                     rows.extend(golden::compare(&self.golden_dir, &name, t, &snaps));
                 }
             }
-            CheckSpec::EquivalentVsFine(_) => rows.push(Row::not_available(
-                &name,
-                spec.name(),
-                "the fine model is not wired into the shared runner yet (`strand run` \
-                 skips it), so there is nothing to compare; this row is not a pass",
-            )),
+            CheckSpec::EquivalentVsFine(t) => {
+                if summary("equivalent").is_some() && summary("fine").is_some() {
+                    let dynamic = matches!(self.scene.analysis, Analysis::Dynamic(_));
+                    rows.extend(compare::rows(
+                        &name,
+                        spec.name(),
+                        &self.out.join("equivalent"),
+                        &self.out.join("fine"),
+                        dynamic,
+                        t,
+                    ));
+                } else {
+                    rows.push(Row::not_available(
+                        &name,
+                        spec.name(),
+                        "the shared runner produced no fine-model run (the fine model is not \
+                         wired into it yet), so there is nothing to compare; this row is not a \
+                         pass",
+                    ));
+                }
+            }
         }
         rows
     }

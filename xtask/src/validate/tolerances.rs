@@ -39,6 +39,10 @@ pub struct DistanceTol {
     pub rms: f64,
     /// Tip distance.
     pub tip: f64,
+    /// Model against model in dynamics: largest energy difference of any component over the
+    /// output times, relative to the largest kinetic energy (`equivalent-vs-fine` only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub energy: Option<f64>,
     /// Why these limits.
     pub why: String,
     /// Run this check in `--quick` (default: the scene's setting).
@@ -311,6 +315,14 @@ fn validate_spec(scene: &str, spec: &CheckSpec) -> anyhow::Result<()> {
             positive(t.max, &at("max"))?;
             positive(t.rms, &at("rms"))?;
             positive(t.tip, &at("tip"))?;
+            match (t.energy, spec) {
+                (Some(e), CheckSpec::EquivalentVsFine(_)) => positive(e, &at("energy"))?,
+                (Some(_), _) => bail!(
+                    "{}: only equivalent-vs-fine compares energies",
+                    at("energy")
+                ),
+                (None, _) => {}
+            }
         }
         CheckSpec::PaperTension(t) => {
             positive(t.relative, &at("relative"))?;

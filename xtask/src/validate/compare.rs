@@ -1,0 +1,263 @@
+//! One model's run against another's on the same scene (SPEC 7): centreline distance at equal
+//! material coordinate (max and RMS over s), tip distance, and in dynamics the tip distance
+//! over the output times and the energy differences per component.
+
+use std::path::Path;
+
+use anyhow::{Context, bail};
+
+use super::report::{Bound, Row};
+use super::results::{Centerline, Energy, Table};
+use super::tolerances::DistanceTol;
+
+/// Differences between two runs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Comparison {
+    /// Largest centreline distance over s, at the end (m).
+    pub max: f64,
+    /// RMS centreline distance over the first run's points, at the end (m).
+    pub rms: f64,
+    /// Tip distance at the end (m).
+    pub tip: f64,
+    /// Dynamics: largest and RMS tip distance over the common output times (m).
+    pub tip_over_time: Option<(f64, f64)>,
+    /// Dynamics: largest difference over the output times of kinetic, gravity, elastic,
+    /// dissipated and their sum (J), and the larger run's largest kinetic energy (J).
+    pub energy: Option<([f64; 5], f64)>,
+}
+
+/// Compares the model folders `a` and `b` (each with `centerline.csv`, and for dynamics
+/// `tip.csv` and `energy.csv`); `b` is interpolated linearly at `a`'s material coordinates.
+pub fn compare(a: &Path, b: &Path, dynamic: bool) -> anyhow::Result<Comparison> {
+    let (ca, cb) = (Centerline::load(a)?, Centerline::load(b)?);
+    let mut max: f64 = 0.0;
+    let mut sum = 0.0;
+    for i in 0..ca.s.len() {
+        let (x, y) = (
+            cb.interpolate(&cb.x, ca.s[i]),
+            cb.interpolate(&cb.y, ca.s[i]),
+        );
+        let d = (ca.x[i] - x).hypot(ca.y[i] - y);
+        max = max.max(d);
+        sum += d * d;
+    }
+    let (na, nb) = (ca.s.len() - 1, cb.s.len() - 1);
+    if (ca.s[na] - cb.s[nb]).abs() > 1e-9 * ca.s[na].abs().max(1.0) {
+        bail!(
+            "the runs end at different material coordinates ({} and {} m)",
+            ca.s[na],
+            cb.s[nb]
+        );
+    }
+    let tip = (ca.x[na] - cb.x[nb]).hypot(ca.y[na] - cb.y[nb]);
+    let mut c = Comparison {
+        max: max.max(tip),
+        rms: (sum / ca.s.len() as f64).sqrt(),
+        tip,
+        tip_over_time: None,
+        energy: None,
+    };
+    if dynamic {
+        c.tip_over_time = Some(tip_over_time(a, b)?);
+        let (ea, eb) = (Energy::load(a)?, Energy::load(b)?);
+        let pairs = common_times(&ea.t, &eb.t);
+        if pairs.is_empty() {
+            bail!("energy.csv: no common output times");
+        }
+        let mut diff = [0.0f64; 5];
+        for (i, j) in pairs {
+            let sa = ea.kinetic[i] + ea.gravity[i] + ea.elastic[i] + ea.dissipated[i];
+            let sb = eb.kinetic[j] + eb.gravity[j] + eb.elastic[j] + eb.dissipated[j];
+            let d = [
+                ea.kinetic[i] - eb.kinetic[j],
+                ea.gravity[i] - eb.gravity[j],
+                ea.elastic[i] - eb.elastic[j],
+                ea.dissipated[i] - eb.dissipated[j],
+                sa - sb,
+            ];
+            for (m, v) in diff.iter_mut().zip(d) {
+                *m = m.max(v.abs());
+            }
+        }
+        let kmax = ea
+            .kinetic
+            .iter()
+            .chain(&eb.kinetic)
+            .copied()
+            .fold(0.0, f64::max);
+        c.energy = Some((diff, kmax));
+    }
+    Ok(c)
+}
+
+/// Index pairs of equal output times (to 1e-9 of the step between frames).
+fn common_times(a: &[f64], b: &[f64]) -> Vec<(usize, usize)> {
+    let tol = 1e-9 * a.last().copied().unwrap_or(1.0).abs().max(1e-12);
+    let mut out = Vec::new();
+    let mut j = 0;
+    for (i, &t) in a.iter().enumerate() {
+        while j < b.len() && b[j] < t - tol {
+            j += 1;
+        }
+        if j < b.len() && (b[j] - t).abs() <= tol {
+            out.push((i, j));
+        }
+    }
+    out
+}
+
+fn tip_over_time(a: &Path, b: &Path) -> anyhow::Result<(f64, f64)> {
+    let load = |d: &Path| -> anyhow::Result<[Vec<f64>; 3]> {
+        let t = Table::load(&d.join("tip.csv"))?;
+        Ok([t.column("t")?, t.column("x")?, t.column("y")?])
+    };
+    let (ta, tb) = (load(a)?, load(b)?);
+    let pairs = common_times(&ta[0], &tb[0]);
+    if pairs.is_empty() {
+        bail!("tip.csv: no common output times");
+    }
+    let mut max: f64 = 0.0;
+    let mut sum = 0.0;
+    for &(i, j) in &pairs {
+        let d = (ta[1][i] - tb[1][j]).hypot(ta[2][i] - tb[2][j]);
+        max = max.max(d);
+        sum += d * d;
+    }
+    Ok((max, (sum / pairs.len() as f64).sqrt()))
+}
+
+/// The rows of `check` for the comparison of `a` with `b`.
+pub fn rows(
+    scene: &str,
+    check: &str,
+    a: &Path,
+    b: &Path,
+    dynamic: bool,
+    tol: &DistanceTol,
+) -> Vec<Row> {
+    let c = match compare(a, b, dynamic).context("comparing the runs") {
+        Ok(c) => c,
+        Err(e) => return vec![Row::failed(scene, check, "-", format!("{e:#}"))],
+    };
+    let end = if dynamic { " at the end" } else { "" };
+    let mut rows = vec![
+        Row::measured(scene, check, "max", c.max, "m", Bound::AtMost(tol.max))
+            .with_note(format!("largest centreline distance over s{end}")),
+        Row::measured(scene, check, "rms", c.rms, "m", Bound::AtMost(tol.rms)),
+        Row::measured(scene, check, "tip", c.tip, "m", Bound::AtMost(tol.tip)),
+    ];
+    if let Some((max, rms)) = c.tip_over_time {
+        rows.push(Row::measured(
+            scene,
+            check,
+            "tip max over t",
+            max,
+            "m",
+            Bound::AtMost(tol.max),
+        ));
+        rows.push(Row::measured(
+            scene,
+            check,
+            "tip rms over t",
+            rms,
+            "m",
+            Bound::AtMost(tol.rms),
+        ));
+    }
+    if let Some((diff, kmax)) = c.energy {
+        let Some(limit) = tol.energy else {
+            rows.push(Row::failed(
+                scene,
+                check,
+                "energy",
+                "a dynamic scene needs an `energy` tolerance in validation/tolerances.json",
+            ));
+            return rows;
+        };
+        let names = ["kinetic", "gravity", "elastic", "dissipated", "total"];
+        for (name, d) in names.iter().zip(diff) {
+            rows.push(
+                Row::measured(
+                    scene,
+                    check,
+                    &format!("{name} energy"),
+                    d / kmax.max(f64::MIN_POSITIVE),
+                    "",
+                    Bound::AtMost(limit),
+                )
+                .with_note(format!(
+                    "{d:.3e} J over the output times, relative to {kmax:.3e} J"
+                )),
+            );
+        }
+    }
+    rows
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::validate::report::Status;
+
+    fn write_run(dir: &Path, dy: f64, dk: f64) {
+        std::fs::create_dir_all(dir).unwrap();
+        let mut c = String::from("s,x,y,z,curvature,tension,bending_stiffness\n");
+        for i in 0..=10 {
+            let s = i as f64 * 0.1;
+            c += &format!("{s},{s},{},0,0,0,1\n", -0.1 * s + dy * s);
+        }
+        std::fs::write(dir.join("centerline.csv"), c).unwrap();
+        let mut t = String::from("t,x,y,z,vx,vy,vz\n");
+        let mut e = String::from("t,kinetic,gravity,elastic,dissipated,total\n");
+        for k in 0..=4 {
+            let time = k as f64 * 0.01;
+            t += &format!("{time},1,{},0,0,0,0\n", -0.1 + dy * k as f64);
+            e += &format!("{time},{},-1,0,0,0\n", 1.0 + dk * k as f64);
+        }
+        std::fs::write(dir.join("tip.csv"), t).unwrap();
+        std::fs::write(dir.join("energy.csv"), e).unwrap();
+    }
+
+    #[test]
+    fn distances_and_energy_differences() {
+        let root = std::env::temp_dir().join(format!("xtask-compare-{}", std::process::id()));
+        let (a, b) = (root.join("a"), root.join("b"));
+        write_run(&a, 0.0, 0.0);
+        write_run(&b, 1e-3, 0.01);
+        let c = compare(&a, &b, true).unwrap();
+        assert!(
+            (c.max - 1e-3).abs() < 1e-12 && (c.tip - 1e-3).abs() < 1e-12,
+            "{c:?}"
+        );
+        let (tmax, _) = c.tip_over_time.unwrap();
+        assert!((tmax - 4e-3).abs() < 1e-12);
+        let (diff, kmax) = c.energy.unwrap();
+        assert!((diff[0] - 0.04).abs() < 1e-12 && (diff[4] - 0.04).abs() < 1e-12);
+        assert!((kmax - 1.04).abs() < 1e-12);
+        let tol = DistanceTol {
+            max: 2e-3,
+            rms: 2e-3,
+            tip: 2e-3,
+            energy: Some(0.01),
+            why: "test".into(),
+            quick: None,
+        };
+        let r = rows("s", "equivalent-vs-fine", &a, &b, true, &tol);
+        let failed: Vec<&str> = r
+            .iter()
+            .filter(|r| r.status == Status::Fail)
+            .map(|r| r.metric.as_str())
+            .collect();
+        assert_eq!(
+            failed,
+            [
+                "tip max over t",
+                "tip rms over t",
+                "kinetic energy",
+                "total energy"
+            ],
+            "{r:?}"
+        );
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+}
