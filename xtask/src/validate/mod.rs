@@ -381,9 +381,9 @@ impl SceneRun<'_> {
                 Ok(c) => c,
                 Err(e) => return fail(format!("{e:#}")),
             };
-            errors.push(checks::distance(&c, summary[0].tip, &reference).max);
+            errors.push(checks::distance(&c, summary[0].tip, &reference));
         }
-        let order = checks::observed_order(errors[1], errors[2]);
+        let order = checks::observed_order(errors[1].max, errors[2].max);
         let e = &t.elements;
         vec![
             Row::measured(
@@ -395,15 +395,18 @@ impl SceneRun<'_> {
                 report::Bound::AtLeast(t.order),
             )
             .with_note(format!(
-                "largest distance to the elastica {:.2e}, {:.2e}, {:.2e} m at {}, {}, {} \
-                 elements (order {:.2} from the first pair)",
-                errors[0],
-                errors[1],
-                errors[2],
+                "largest distance to the elastica {:.2e}, {:.2e}, {:.2e} m (at s = {:.3}, \
+                 {:.3}, {:.3} m) with {}, {}, {} elements; order {:.2} from the first pair",
+                errors[0].max,
+                errors[1].max,
+                errors[2].max,
+                errors[0].at,
+                errors[1].at,
+                errors[2].at,
                 e[0],
                 e[1],
                 e[2],
-                checks::observed_order(errors[0], errors[1])
+                checks::observed_order(errors[0].max, errors[1].max)
             )),
         ]
     }
