@@ -150,6 +150,10 @@ fn stiff_contact() -> ContactOptions {
     }
 }
 
+/// Coarse discretisations (12 and 24 segments per pitch, two contact points per segment):
+/// within 20 % of K_max. Two points per segment also resist the rocking of each rigid wire
+/// segment on the core (their arm is l/4, so this stiffening vanishes as l^3): the coarse
+/// result is stiffer than the converged one (see the two tests below).
 #[test]
 fn bonded_strand_starts_near_k_max() {
     let k_max = table1().max_bending_stiffness();
@@ -157,24 +161,49 @@ fn bonded_strand_starts_near_k_max() {
     let r = curve[1].secant_stiffness() / k_max;
     assert!((r - 1.0).abs() < 0.2, "K = {r} K_max");
     assert_eq!(curve[1].slip, 0);
-    // With the default penalties at 12 segments per pitch.
     let curve = run(1e3, 10.0, vec![0.01]);
     let r = curve[1].secant_stiffness() / k_max;
     assert!((r - 1.0).abs() < 0.2, "K = {r} K_max");
 }
 
-/// Initial bonded stiffness against segments per pitch and penalty stiffness.
+/// Converged in the segment length (one contact point per segment converges by 24 segments
+/// per pitch: 0.792, 0.798, 0.800 K_max at 24, 48, 96) with stiff penalties, the bonded
+/// stiffness is 0.80 K_max: just outside the 20 % band. Finding: the friction traction acts
+/// on the wire's surface, r_w from its axis; its moment tilts the wire section against the
+/// wire's shear stiffness kappa G A, so the contact line's axial displacement differs from
+/// the axis's (the closed form assumes none). Raising the wires' G A 100 times gives 0.92.
+#[test]
+#[ignore = "finding: the converged bonded stiffness is 0.80 K_max (see the doc comment)"]
+fn bonded_converged_within_20_percent_of_k_max() {
+    let k_max = table1().max_bending_stiffness();
+    let contact = ContactOptions {
+        points_per_segment: 1,
+        ..stiff_contact()
+    };
+    let curve = run_with(1e3, 10.0, vec![0.01], 48, contact);
+    let r = curve[1].secant_stiffness() / k_max;
+    assert!((r - 1.0).abs() < 0.2, "K = {r} K_max");
+}
+
+/// Initial bonded stiffness against segments per pitch, contact points per segment and
+/// penalty stiffness.
 #[test]
 #[ignore = "study, about 1 min"]
 fn bonded_stiffness_refinement_study() {
     let s = table1();
     let k_max = s.max_bending_stiffness();
+    let one = |c: ContactOptions| ContactOptions {
+        points_per_segment: 1,
+        ..c
+    };
     let mut rows = Vec::new();
     for (name, contact) in [
-        ("default penalties", ContactOptions::default()),
-        ("stiff penalties", stiff_contact()),
+        ("default, 2 points", ContactOptions::default()),
+        ("stiff, 2 points", stiff_contact()),
+        ("default, 1 point", one(ContactOptions::default())),
+        ("stiff, 1 point", one(stiff_contact())),
     ] {
-        for spp in [6, 12, 24, 48] {
+        for spp in [6, 12, 24, 48, 96] {
             let c = run_with(1e3, 10.0, vec![0.01], spp, contact);
             rows.push((name, spp, c[1].secant_stiffness() / k_max, c[1].tension));
         }
