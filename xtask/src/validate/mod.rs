@@ -102,6 +102,7 @@ pub fn run(args: &ValidateArgs) -> anyhow::Result<Report> {
             provenance: &provenance,
             bar: &bar,
             base: i as u64 * 1000,
+            tag: format!("[{}/{}]", i + 1, plan.len()),
         };
         let r = ctx.validate(specs);
         for row in r.iter().filter(|r| r.status == report::Status::Fail) {
@@ -179,6 +180,8 @@ struct SceneRun<'a> {
     provenance: &'a Provenance,
     bar: &'a ProgressBar,
     base: u64,
+    /// `[i/N]`: which scene of the plan this is.
+    tag: String,
 }
 
 impl SceneRun<'_> {
@@ -192,9 +195,9 @@ impl SceneRun<'_> {
             out: dir.to_path_buf(),
             vtk: false,
         };
-        let (bar, base) = (self.bar, self.base);
+        let (bar, base, tag) = (self.bar, self.base, &self.tag);
         let mut progress = |model: &str, f: f64| {
-            bar.set_message(format!("{label} {model}"));
+            bar.set_message(format!("{tag} {label} {model}"));
             bar.set_position(base + (f.clamp(0.0, 1.0) * 999.0) as u64);
         };
         run_scene(&scene, &opts, &mut progress).map_err(|e| anyhow::anyhow!("{e}"))
@@ -244,7 +247,8 @@ impl SceneRun<'_> {
                     ));
                     return rows;
                 };
-                self.bar.set_message(format!("{name} elastica reference"));
+                self.bar
+                    .set_message(format!("{} {name} elastica reference", self.tag));
                 let reference = checks::elastica(self.scene, kind);
                 rows.extend(checks::against_elastica(
                     self.scene,
