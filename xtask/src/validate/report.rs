@@ -134,6 +134,7 @@ impl Row {
 
     fn value_text(&self) -> String {
         match self.value {
+            Some(0.0) => format!("0{}", unit_suffix(self.unit)),
             Some(v) => format!("{v:.3e}{}", unit_suffix(self.unit)),
             None => "-".into(),
         }
