@@ -53,4 +53,6 @@ pub use model::{
     WireState,
 };
 pub use segment::{Pose, Segment};
-pub use statics::{StaticError, StaticOptions, StaticReport, solve_static};
+pub use statics::{
+    RelaxationOptions, StaticError, StaticOptions, StaticReport, solve_relaxation, solve_static,
+};

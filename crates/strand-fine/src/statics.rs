@@ -96,6 +96,7 @@ struct Scales {
     moment: f64,
     force_allowance: f64,
     moment_allowance: f64,
+    roundoff: f64,
 }
 
 /// Residual measures: (largest ratio to the allowance, 2-norm scaled by the reference
@@ -159,16 +160,8 @@ fn apply_step(base: &ModelState, delta: &[f64], alpha: f64, out: &mut ModelState
     }
 }
 
-/// Solves for static equilibrium under the model's gravity, starting from `state` (poses
-/// only; velocities are left untouched) and leaving the equilibrium in `state`.
-pub fn solve_static(
-    model: &FineModel,
-    state: &mut ModelState,
-    options: &StaticOptions,
-) -> Result<StaticReport, StaticError> {
-    faer::set_global_parallelism(faer::Par::Seq);
-    let n_seg = model.segment_count();
-    let n = 6 * n_seg;
+/// Residual scales and allowances of `options` for `model`.
+fn scales(model: &FineModel, options: &StaticOptions) -> Scales {
     let segs = model.wires.iter().flat_map(|w| w.chain.segments.iter());
     let g = model.gravity.norm();
     let weight = segs.clone().map(|s| s.mass * g).fold(0.0, f64::max);
@@ -205,12 +198,26 @@ pub fn solve_static(
         .map(|j| j.stiffness.translational.max())
         .fold(0.0, f64::max);
     let roundoff = 100.0 * f64::EPSILON * x_max * k_max;
-    let sc = Scales {
+    Scales {
         force,
         moment: force * l_ref,
         force_allowance: options.tolerance * force + roundoff,
         moment_allowance: (options.tolerance * force + roundoff) * l_ref,
-    };
+        roundoff,
+    }
+}
+
+/// Solves for static equilibrium under the model's gravity, starting from `state` (poses
+/// only; velocities are left untouched) and leaving the equilibrium in `state`.
+pub fn solve_static(
+    model: &FineModel,
+    state: &mut ModelState,
+    options: &StaticOptions,
+) -> Result<StaticReport, StaticError> {
+    faer::set_global_parallelism(faer::Par::Seq);
+    let n = 6 * model.segment_count();
+    let sc = scales(model, options);
+    let roundoff = sc.roundoff;
     let mut loads = model.load_buffers();
     let mut trial = state.clone();
     let mut rhs = Mat::<f64>::zeros(n, 1);
@@ -327,6 +334,155 @@ pub fn solve_static(
         iterations,
         residual,
         roundoff,
+        force_scale: sc.force,
+        moment_scale: sc.moment,
+    })
+}
+
+/// Controls of the dynamic relaxation ([`solve_relaxation`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RelaxationOptions {
+    /// Number of equal load steps from zero to full load.
+    pub load_steps: usize,
+    /// Tolerance on the scaled residual (-), as in [`StaticOptions`].
+    pub tolerance: f64,
+    /// Pseudo-time steps allowed per load step.
+    pub max_iterations: usize,
+    /// Reference force F_ref (N) of the residual, as in [`StaticOptions`].
+    pub force_scale: Option<f64>,
+    /// Pseudo-time steps between updates of the fictitious masses.
+    pub mass_update: usize,
+}
+
+impl Default for RelaxationOptions {
+    fn default() -> Self {
+        Self {
+            load_steps: 10,
+            tolerance: 1e-9,
+            max_iterations: 1_000_000,
+            force_scale: None,
+            mass_update: 200,
+        }
+    }
+}
+
+/// Fictitious masses of dynamic relaxation: 0.6 times the Gershgorin row sums of the tangent
+/// (contacts entered closed), so that a unit pseudo-time step is stable.
+fn fictitious_masses(model: &FineModel, state: &ModelState, mass: &mut [f64]) {
+    mass.iter_mut().for_each(|m| *m = 0.0);
+    let mut elements = model.joint_tangents(state);
+    elements.extend(model.contact_bound_tangents(state));
+    for e in elements {
+        for (bi, si) in e.segments.iter().enumerate() {
+            let Some(si) = si else { continue };
+            for bj in 0..2 {
+                if e.segments[bj].is_none() {
+                    continue;
+                }
+                for r in 0..6 {
+                    for c in 0..6 {
+                        mass[6 * si + r] += 0.6 * e.stiffness[(6 * bi + r, 6 * bj + c)].abs();
+                    }
+                }
+            }
+        }
+    }
+    let floor = mass.iter().fold(0.0f64, |a, &b| a.max(b)) * 1e-12;
+    mass.iter_mut().for_each(|m| *m = m.max(floor));
+}
+
+/// Static equilibrium by dynamic relaxation with kinetic damping: pseudo-time steps of the
+/// undamped motion with fictitious masses (0.6 times the Gershgorin row sums of the tangent,
+/// contacts entered closed, so that a unit step is stable), the velocities zeroed at every
+/// peak of the kinetic energy. Slow but robust where Newton stalls (wires held only
+/// by contacts at zero gap). Contact histories are frozen within a load step and committed
+/// when it converges on the residual criterion of [`solve_static`].
+pub fn solve_relaxation(
+    model: &FineModel,
+    state: &mut ModelState,
+    options: &RelaxationOptions,
+) -> Result<StaticReport, StaticError> {
+    let so = StaticOptions {
+        load_steps: options.load_steps,
+        tolerance: options.tolerance,
+        max_iterations: options.max_iterations,
+        force_scale: options.force_scale,
+        ..Default::default()
+    };
+    let sc = scales(model, &so);
+    let n = 6 * model.segment_count();
+    let mut loads = model.load_buffers();
+    let mut vel = vec![0.0; n];
+    let mut mass = vec![0.0; n];
+    let mut iterations = 0;
+    let mut residual = 0.0;
+    let steps = options.load_steps.max(1);
+    for step in 1..=steps {
+        let lambda = step as f64 / steps as f64;
+        vel.iter_mut().for_each(|v| *v = 0.0);
+        let mut ke_prev = 0.0;
+        let mut it = 0;
+        loop {
+            if it % options.mass_update.max(1) == 0 {
+                fictitious_masses(model, state, &mut mass);
+            }
+            model.compute_loads(state, lambda, &mut loads);
+            let (rmax, _, rel) = residual_norms(&loads, &sc);
+            if rmax.is_nan() {
+                return Err(StaticError::NonFinite { step });
+            }
+            residual = rel;
+            if rmax <= 1.0 {
+                break;
+            }
+            if it == options.max_iterations {
+                return Err(StaticError::NotConverged {
+                    step,
+                    residual: rel,
+                });
+            }
+            it += 1;
+            let mut s = 0;
+            let mut ke = 0.0;
+            for l in &loads {
+                for (f, t) in l.forces.iter().zip(&l.torques) {
+                    for i in 0..3 {
+                        let (a, b) = (6 * s + i, 6 * s + 3 + i);
+                        vel[a] += f[i] / mass[a];
+                        vel[b] += t[i] / mass[b];
+                        ke += mass[a] * vel[a] * vel[a] + mass[b] * vel[b] * vel[b];
+                    }
+                    s += 1;
+                }
+            }
+            if ke < ke_prev {
+                // Kinetic energy peaked: restart from rest.
+                vel.iter_mut().for_each(|v| *v = 0.0);
+                ke_prev = 0.0;
+                continue;
+            }
+            ke_prev = ke;
+            let mut s = 0;
+            for ws in &mut state.wires {
+                for p in &mut ws.poses {
+                    let d = &vel[6 * s..6 * s + 6];
+                    p.position += Vector3::new(d[0], d[1], d[2]);
+                    let mut q = so3::exp(&Vector3::new(d[3], d[4], d[5])) * p.rotation;
+                    q.renormalize();
+                    p.rotation = q;
+                    s += 1;
+                }
+            }
+        }
+        iterations += it;
+        model.compute_loads(state, lambda, &mut loads);
+        model.commit_contacts(state, &loads);
+    }
+    Ok(StaticReport {
+        load_steps: steps,
+        iterations,
+        residual,
+        roundoff: sc.roundoff,
         force_scale: sc.force,
         moment_scale: sc.moment,
     })

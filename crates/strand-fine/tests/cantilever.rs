@@ -79,3 +79,34 @@ fn large_deflection_matches_the_elastica() {
     }
     assert!(errors[1] < 0.01, "n = 20 within 1 % L");
 }
+
+#[test]
+fn dynamic_relaxation_agrees_with_newton() {
+    let s = section();
+    let ei = s.youngs_modulus * s.inertia;
+    let q = 1.0 * ei / LENGTH.powi(3);
+    let mut m = FineModel::single_wire(s, LENGTH, 10, Support::Clamped, Support::Free);
+    m.gravity = Vector3::new(0.0, -q / (s.density * s.area), 0.0);
+    let mut a = m.rest_state();
+    solve_static(&m, &mut a, &StaticOptions::default()).expect("Newton");
+    let mut b = m.rest_state();
+    let rep = strand_fine::solve_relaxation(
+        &m,
+        &mut b,
+        &strand_fine::RelaxationOptions {
+            load_steps: 1,
+            tolerance: 1e-7,
+            ..Default::default()
+        },
+    )
+    .expect("relaxation");
+    let (ta, tb) = (m.core_centreline(&a)[10], m.core_centreline(&b)[10]);
+    println!(
+        "relaxation: {} pseudo-time steps, residual {:.2e} F_ref; tip difference to Newton \
+         {:.2e} m",
+        rep.iterations,
+        rep.residual,
+        (ta - tb).norm()
+    );
+    assert!((ta - tb).norm() < 1e-6 * LENGTH);
+}

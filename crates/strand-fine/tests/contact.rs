@@ -319,11 +319,12 @@ fn strand_cantilever_with_contacts_reaches_equilibrium() {
     m.gravity = Vector3::new(0.0, -env("G", 8.0), 0.0);
     let mut state = m.rest_state();
     let t = Instant::now();
-    let rep = strand_fine::solve_static(
+    let rep = strand_fine::solve_relaxation(
         &m,
         &mut state,
-        &strand_fine::StaticOptions {
+        &strand_fine::RelaxationOptions {
             load_steps: env("STEPS", 10.0) as usize,
+            tolerance: env("TOL", 1e-6),
             ..Default::default()
         },
     )
