@@ -205,7 +205,13 @@ impl SceneRun<'_> {
 
     fn validate(&self, specs: &[&CheckSpec]) -> Vec<Row> {
         let name = self.scene.name.clone();
-        let run = self.run(self.scene, &self.out, &name);
+        // Results of an earlier validation must not stand in for a model this run skips.
+        let run = match std::fs::remove_dir_all(&self.out) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                Err(anyhow::anyhow!("clearing {}: {e}", self.out.display()))
+            }
+            _ => self.run(self.scene, &self.out, &name),
+        };
         let summaries = match run {
             Ok(s) => s,
             Err(e) => {
