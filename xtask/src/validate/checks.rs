@@ -103,22 +103,20 @@ pub fn elastica(scene: &Scene, kind: BeamKind) -> Result<Solution, String> {
     let strand = &scene.strand;
     let q = model.mass_per_length.unwrap_or(strand.mass_per_length()) * (-gy);
     let opts = Options::default();
-    let run = |law: &dyn Fn(&Cantilever) -> Result<Solution, strand_elastica::ElasticaError>,
-               ea: f64| {
-        law(&Cantilever::extensible(strand.length(), q, ea)).map_err(|e| e.to_string())
-    };
-    match kind {
+    let cantilever = |ea: f64| Cantilever::extensible(strand.length(), q, ea);
+    let solution = match kind {
         BeamKind::Equivalent => {
             // The hysteretic law from a virgin state on a monotone load path is `continuous`.
             let law = StrandLaw::new(SectionLaw::new(strand, scene.law));
-            run(&|p| solve(p, &law, &opts), law.axial_stiffness())
+            solve(&cantilever(law.axial_stiffness()), &law, &opts)
         }
         BeamKind::Traditional => {
             let t = strand.traditional();
             let law = ConstantEi::new(t.bending_stiffness);
-            run(&|p| solve(p, &law, &opts), t.axial_stiffness)
+            solve(&cantilever(t.axial_stiffness), &law, &opts)
         }
-    }
+    };
+    solution.map_err(|e| e.to_string())
 }
 
 /// The three rows (max, rms, tip) of a distance check.
