@@ -361,10 +361,14 @@ fn strand_cantilever_with_contacts_reaches_equilibrium() {
 /// The paper's Fig. 8 pendulum with contacts: 7 wires x 77 segments, Table 1 strand,
 /// released horizontal under gravity 9.8065 m/s^2 for 0.5 s; wall time and throughput.
 #[test]
-#[ignore = "speed study, about 1-2 min per boundary condition"]
+#[ignore = "speed study, about 1 min per boundary condition; MU from the environment (0.3)"]
 fn fig8_pendulum_speed() {
+    let mu = std::env::var("MU")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(0.3);
     for support in [Support::Clamped, Support::Pinned] {
-        let s = strand(0.4, 0.3);
+        let s = strand(0.4, mu);
         let mut m = FineModel::from_strand(
             &s,
             Discretisation {
@@ -397,7 +401,7 @@ fn fig8_pendulum_speed() {
         let e = int.energies(&m, &state);
         let tip = m.core_centreline(&state)[77];
         println!(
-            "Fig. 8 {support:?}: dt = {dt:.3e} s, {steps} steps, wall {wall:.1} s (set-up {:.2} \
+            "Fig. 8 {support:?}, mu = {mu}: dt = {dt:.3e} s, {steps} steps, wall {wall:.1} s (set-up {:.2} \
              s), {:.3e} segment-steps/s on {} threads; max |E + W_f - E0| {:.2e} of the drop \
              {:.3e} J; friction work {:.3e} J; tip at 0.5 s ({:.4}, {:.4}) m",
             setup,
