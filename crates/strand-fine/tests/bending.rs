@@ -259,6 +259,7 @@ fn wire_forces() {
         contact: ContactOptions {
             stick_loss: env("STICK_LOSS", 0.05),
             penetration: env("PEN", 1e-3),
+            points_per_segment: env("PTS", 2.0) as usize,
             ..Default::default()
         },
         friction: env("MU", 1e3),
