@@ -9,33 +9,10 @@ use strand_ancf::band::BandMatrix;
 use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support};
 use strand_ancf::dynamics::{DynamicOptions, Scheme, run_dynamic, stable_step};
 use strand_ancf::statics::{StaticOptions, solve_static};
-use strand_core::{
-    LawKind, LayDirection, LayerSpec, Material, SectionLaw, Strand, StrandSpec, WireSpec,
-};
+use strand_core::{LawKind, SectionLaw, Strand, StrandSpec};
 
 fn section3(length: f64) -> Strand {
-    let mat = Material {
-        youngs_modulus: 2.0e9,
-        poisson_ratio: 0.3,
-        density: 5747.0,
-    };
-    let w = |d| WireSpec {
-        diameter: d,
-        material: mat,
-    };
-    Strand::new(StrandSpec {
-        length,
-        core: w(3.0e-3),
-        layers: vec![LayerSpec {
-            wires: 6,
-            wire: w(2.0e-3),
-            lay_angle: 20f64.to_radians(),
-            phase: 0.0,
-            direction: LayDirection::Right,
-        }],
-        friction: 0.3,
-    })
-    .unwrap()
+    Strand::new(StrandSpec::paper(length, 2.0e9, 5747.0)).unwrap()
 }
 
 /// A beam of `elements` elements of the 30-element mesh's length (1/30 m).

@@ -5,9 +5,7 @@
 
 use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support};
 use strand_ancf::dynamics::{DynamicOptions, DynamicSummary, Scheme, run_dynamic, stable_step};
-use strand_core::{
-    LawKind, LayDirection, LayerSpec, Material, SectionLaw, Strand, StrandSpec, WireSpec,
-};
+use strand_core::{LawKind, SectionLaw, Strand, StrandSpec};
 
 /// The paper's Table 1 strand (L = 0.4 m, E = 2e8 Pa).
 fn strand() -> Strand {
@@ -20,28 +18,7 @@ fn section3() -> Strand {
 }
 
 fn strand_of(length: f64, e: f64, rho: f64) -> Strand {
-    let mat = Material {
-        youngs_modulus: e,
-        poisson_ratio: 0.3,
-        density: rho,
-    };
-    let w = |d| WireSpec {
-        diameter: d,
-        material: mat,
-    };
-    Strand::new(StrandSpec {
-        length,
-        core: w(3.0e-3),
-        layers: vec![LayerSpec {
-            wires: 6,
-            wire: w(2.0e-3),
-            lay_angle: 20f64.to_radians(),
-            phase: 0.0,
-            direction: LayDirection::Right,
-        }],
-        friction: 0.3,
-    })
-    .unwrap()
+    Strand::new(StrandSpec::paper(length, e, rho)).unwrap()
 }
 
 fn pendulum(kind: LawKind, elements: usize) -> Beam {

@@ -6,33 +6,12 @@ use strand_ancf::band::BandMatrix;
 use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support};
 use strand_ancf::dynamics::{DynamicOptions, Scheme, run_dynamic};
 use strand_ancf::statics::{StaticOptions, solve_static};
-use strand_core::{
-    LawKind, LayDirection, LayerSpec, Material, SectionLaw, Strand, StrandSpec, WireSpec,
-};
+use strand_core::{LawKind, SectionLaw, Strand, StrandSpec};
 
 fn strand(length: f64, e: f64, rho: f64) -> Strand {
-    let mat = Material {
-        youngs_modulus: e,
-        poisson_ratio: 0.3,
-        density: rho,
-    };
-    let w = |d| WireSpec {
-        diameter: d,
-        material: mat,
-    };
-    Strand::new(StrandSpec {
-        length,
-        core: w(3.0e-3),
-        layers: vec![LayerSpec {
-            wires: 6,
-            wire: w(2.0e-3),
-            lay_angle: 20f64.to_radians(),
-            phase: 0.3,
-            direction: LayDirection::Right,
-        }],
-        friction: 0.3,
-    })
-    .unwrap()
+    let mut spec = StrandSpec::paper(length, e, rho);
+    spec.layers[0].phase = 0.3;
+    Strand::new(spec).unwrap()
 }
 
 fn beam(s: &Strand, kind: LawKind, element: ElementKind, n: usize, support: Support) -> Beam {

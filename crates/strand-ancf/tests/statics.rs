@@ -4,37 +4,14 @@
 
 use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support};
 use strand_ancf::statics::{StaticOptions, solve_static};
-use strand_core::{
-    LawKind, LayDirection, LayerSpec, Material, SectionLaw, Strand, StrandSpec, WireSpec,
-};
+use strand_core::{LawKind, SectionLaw, Strand, StrandSpec};
 
 fn strand(length: f64, e: f64, rho: f64, layer: bool) -> Strand {
-    let mat = Material {
-        youngs_modulus: e,
-        poisson_ratio: 0.3,
-        density: rho,
-    };
-    let w = |d| WireSpec {
-        diameter: d,
-        material: mat,
-    };
-    Strand::new(StrandSpec {
-        length,
-        core: w(3.0e-3),
-        layers: if layer {
-            vec![LayerSpec {
-                wires: 6,
-                wire: w(2.0e-3),
-                lay_angle: 20f64.to_radians(),
-                phase: 0.0,
-                direction: LayDirection::Right,
-            }]
-        } else {
-            Vec::new()
-        },
-        friction: 0.3,
-    })
-    .unwrap()
+    let mut spec = StrandSpec::paper(length, e, rho);
+    if !layer {
+        spec.layers.clear();
+    }
+    Strand::new(spec).unwrap()
 }
 
 fn cantilever(law: SectionLaw, elements: usize, mu: f64, g: f64) -> Beam {

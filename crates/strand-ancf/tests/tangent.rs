@@ -4,33 +4,12 @@
 
 use strand_ancf::band::BandMatrix;
 use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support};
-use strand_core::{
-    LawKind, LayDirection, LayerSpec, Material, SectionLaw, Strand, StrandSpec, WireSpec,
-};
+use strand_core::{LawKind, SectionLaw, Strand, StrandSpec};
 
 fn strand() -> Strand {
-    let mat = Material {
-        youngs_modulus: 2.0e8,
-        poisson_ratio: 0.3,
-        density: 7801.0,
-    };
-    let w = |d| WireSpec {
-        diameter: d,
-        material: mat,
-    };
-    Strand::new(StrandSpec {
-        length: 0.4,
-        core: w(3.0e-3),
-        layers: vec![LayerSpec {
-            wires: 6,
-            wire: w(2.0e-3),
-            lay_angle: 20f64.to_radians(),
-            phase: 0.3,
-            direction: LayDirection::Right,
-        }],
-        friction: 0.3,
-    })
-    .unwrap()
+    let mut spec = StrandSpec::paper(0.4, 2.0e8, 7801.0);
+    spec.layers[0].phase = 0.3;
+    Strand::new(spec).unwrap()
 }
 
 fn beam(kind: LawKind, start: Option<Support>) -> Beam {

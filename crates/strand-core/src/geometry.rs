@@ -104,6 +104,38 @@ pub struct StrandSpec {
     pub friction: f64,
 }
 
+impl StrandSpec {
+    /// The paper's 1+6 strand (Table 1 geometry: core 3 mm, six 2 mm wires at 20 deg, phase 0,
+    /// right lay, friction 0.3) with the given length (m), Young's modulus (Pa) and density
+    /// (kg/m^3), the same for every wire: Table 1 is (0.4, 2e8, 7801), section 3 is
+    /// (1.0, 2e9, 5747).
+    pub fn paper(length: f64, youngs_modulus: f64, density: f64) -> StrandSpec {
+        let material = Material {
+            youngs_modulus,
+            poisson_ratio: 0.3,
+            density,
+        };
+        StrandSpec {
+            length,
+            core: WireSpec {
+                diameter: 3.0e-3,
+                material,
+            },
+            layers: vec![LayerSpec {
+                wires: 6,
+                wire: WireSpec {
+                    diameter: 2.0e-3,
+                    material,
+                },
+                lay_angle: 20f64.to_radians(),
+                phase: 0.0,
+                direction: LayDirection::Right,
+            }],
+            friction: DEFAULT_FRICTION,
+        }
+    }
+}
+
 /// Default friction coefficient when a scene gives none (SPEC 9: the paper does not state it).
 pub const DEFAULT_FRICTION: f64 = 0.3;
 
@@ -405,29 +437,7 @@ mod tests {
 
     /// The paper's Table 1 strand.
     pub(crate) fn table1() -> StrandSpec {
-        let mat = Material {
-            youngs_modulus: 2.0e8,
-            poisson_ratio: 0.3,
-            density: 7801.0,
-        };
-        StrandSpec {
-            length: 0.4,
-            core: WireSpec {
-                diameter: 3.0e-3,
-                material: mat,
-            },
-            layers: vec![LayerSpec {
-                wires: 6,
-                wire: WireSpec {
-                    diameter: 2.0e-3,
-                    material: mat,
-                },
-                lay_angle: 20f64.to_radians(),
-                phase: 0.0,
-                direction: LayDirection::Right,
-            }],
-            friction: 0.3,
-        }
+        StrandSpec::paper(0.4, 2.0e8, 7801.0)
     }
 
     #[test]

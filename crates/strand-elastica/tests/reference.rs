@@ -4,9 +4,7 @@
 use std::time::Instant;
 
 use approx::assert_relative_eq;
-use strand_core::{
-    LawKind, LayDirection, LayerSpec, Material, SectionLaw, Strand, StrandSpec, WireSpec,
-};
+use strand_core::{LawKind, SectionLaw, Strand, StrandSpec};
 use strand_elastica::{
     Cantilever, ConstantEi, ElasticaError, FnLaw, Options, PlanarLaw, Solution, StrandLaw,
     invert_moment, solve,
@@ -14,30 +12,7 @@ use strand_elastica::{
 
 /// The paper's strand (Table 1; section 3 with `length` 1, `e` 2e9, `rho` 5747).
 fn strand(length: f64, e: f64, rho: f64) -> Strand {
-    let mat = Material {
-        youngs_modulus: e,
-        poisson_ratio: 0.3,
-        density: rho,
-    };
-    Strand::new(StrandSpec {
-        length,
-        core: WireSpec {
-            diameter: 3.0e-3,
-            material: mat,
-        },
-        layers: vec![LayerSpec {
-            wires: 6,
-            wire: WireSpec {
-                diameter: 2.0e-3,
-                material: mat,
-            },
-            lay_angle: 20f64.to_radians(),
-            phase: 0.0,
-            direction: LayDirection::Right,
-        }],
-        friction: 0.3,
-    })
-    .expect("valid strand")
+    Strand::new(StrandSpec::paper(length, e, rho)).expect("valid strand")
 }
 
 #[test]

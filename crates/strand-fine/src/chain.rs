@@ -216,33 +216,10 @@ pub fn helix_length(radius: f64, pitch: f64, length: f64) -> f64 {
 pub(crate) mod tests {
     use super::*;
     use approx::assert_relative_eq;
-    use strand_core::{LayDirection, LayerSpec, Material, Strand, StrandSpec};
+    use strand_core::{Strand, StrandSpec};
 
     pub(crate) fn table1() -> Strand {
-        let mat = Material {
-            youngs_modulus: 2.0e8,
-            poisson_ratio: 0.3,
-            density: 7801.0,
-        };
-        Strand::new(StrandSpec {
-            length: 0.4,
-            core: WireSpec {
-                diameter: 3.0e-3,
-                material: mat,
-            },
-            layers: vec![LayerSpec {
-                wires: 6,
-                wire: WireSpec {
-                    diameter: 2.0e-3,
-                    material: mat,
-                },
-                lay_angle: 20f64.to_radians(),
-                phase: 0.0,
-                direction: LayDirection::Right,
-            }],
-            friction: 0.3,
-        })
-        .unwrap()
+        Strand::new(StrandSpec::paper(0.4, 2.0e8, 7801.0)).unwrap()
     }
 
     #[test]

@@ -1,34 +1,10 @@
 //! Virtual bending test against the closed forms K_min and K_max (SPEC 2, 4).
 
-use strand_core::{LayDirection, LayerSpec, Material, Strand, StrandSpec, WireSpec};
+use strand_core::{Strand, StrandSpec};
 use strand_fine::{BendingPoint, BendingTest, ContactOptions, StaticOptions};
 
-const TABLE1: Material = Material {
-    youngs_modulus: 2.0e8,
-    poisson_ratio: 0.3,
-    density: 7801.0,
-};
-
 fn table1() -> Strand {
-    Strand::new(StrandSpec {
-        length: 0.4,
-        core: WireSpec {
-            diameter: 3.0e-3,
-            material: TABLE1,
-        },
-        layers: vec![LayerSpec {
-            wires: 6,
-            wire: WireSpec {
-                diameter: 2.0e-3,
-                material: TABLE1,
-            },
-            lay_angle: 20f64.to_radians(),
-            phase: 0.0,
-            direction: LayDirection::Right,
-        }],
-        friction: 0.3,
-    })
-    .unwrap()
+    Strand::new(StrandSpec::paper(0.4, 2.0e8, 7801.0)).unwrap()
 }
 
 fn env(k: &str, d: f64) -> f64 {

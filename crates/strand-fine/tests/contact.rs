@@ -5,7 +5,7 @@
 use std::time::Instant;
 
 use nalgebra::Vector3;
-use strand_core::{LayDirection, LayerSpec, Material, Strand, StrandSpec, WireSpec};
+use strand_core::{Material, Strand, StrandSpec};
 use strand_fine::{
     Anchor, Chain, ContactOptions, ContactState, Discretisation, FineModel, Integrator,
     JointSpring, JointStiffness, Support, Wire, WireSection, stable_time_step,
@@ -18,25 +18,9 @@ const TABLE1: Material = Material {
 };
 
 fn strand(length: f64, friction: f64) -> Strand {
-    Strand::new(StrandSpec {
-        length,
-        core: WireSpec {
-            diameter: 3.0e-3,
-            material: TABLE1,
-        },
-        layers: vec![LayerSpec {
-            wires: 6,
-            wire: WireSpec {
-                diameter: 2.0e-3,
-                material: TABLE1,
-            },
-            lay_angle: 20f64.to_radians(),
-            phase: 0.0,
-            direction: LayDirection::Right,
-        }],
-        friction,
-    })
-    .unwrap()
+    let mut spec = StrandSpec::paper(length, TABLE1.youngs_modulus, TABLE1.density);
+    spec.friction = friction;
+    Strand::new(spec).unwrap()
 }
 
 #[test]

@@ -5,7 +5,7 @@
 use std::time::Instant;
 
 use nalgebra::Vector3;
-use strand_core::{LayDirection, LayerSpec, Material, Strand, StrandSpec, WireSpec};
+use strand_core::{Material, Strand, StrandSpec, WireSpec};
 use strand_fine::{
     Discretisation, FineModel, Integrator, ModelState, Support, WireSection, stable_time_step,
 };
@@ -17,25 +17,7 @@ const STEEL_TABLE1: Material = Material {
 };
 
 fn table1() -> Strand {
-    Strand::new(StrandSpec {
-        length: 0.4,
-        core: WireSpec {
-            diameter: 3.0e-3,
-            material: STEEL_TABLE1,
-        },
-        layers: vec![LayerSpec {
-            wires: 6,
-            wire: WireSpec {
-                diameter: 2.0e-3,
-                material: STEEL_TABLE1,
-            },
-            lay_angle: 20f64.to_radians(),
-            phase: 0.0,
-            direction: LayDirection::Right,
-        }],
-        friction: 0.3,
-    })
-    .unwrap()
+    Strand::new(StrandSpec::paper(0.4, 2.0e8, 7801.0)).unwrap()
 }
 
 #[test]
