@@ -213,6 +213,22 @@ struct Ledger {
 }
 
 impl Ledger {
+    /// A ledger starting from coordinates `q0` with stored energy `e0`.
+    fn new(beam: &Beam, q0: &[f64], e0: f64) -> Ledger {
+        let potential = -q0
+            .iter()
+            .zip(beam.gravity_force())
+            .map(|(a, b)| a * b)
+            .sum::<f64>();
+        Ledger {
+            q0_gravity: potential,
+            dissipated: 0.0,
+            e0,
+            balance_error: 0.0,
+            max_kinetic: 0.0,
+        }
+    }
+
     fn gravity(&self, beam: &Beam, q: &[f64]) -> f64 {
         -q.iter()
             .zip(beam.gravity_force())
@@ -348,17 +364,7 @@ fn verlet(
         .internal(&q, &slip, &mut trial, &mut force, None, Some(&mut pts))
         .map_err(fail(0.0, 0))?;
     accel(&force, &mut af);
-    let mut ledger = Ledger {
-        q0_gravity: -q
-            .iter()
-            .zip(beam.gravity_force())
-            .map(|(a, b)| a * b)
-            .sum::<f64>(),
-        dissipated: 0.0,
-        e0: ev.energy,
-        balance_error: 0.0,
-        max_kinetic: 0.0,
-    };
+    let mut ledger = Ledger::new(beam, &q, ev.energy);
     let mut en = ledger.energies(beam, 0.0, &q, &vf, &mut mv, ev.energy);
     observer(Frame {
         t: 0.0,
@@ -675,18 +681,7 @@ fn generalized_alpha(
     }
     m.solve(&mut st.acc);
     st.alg.copy_from_slice(&st.acc);
-    let mut ledger = Ledger {
-        q0_gravity: -st
-            .q
-            .iter()
-            .zip(beam.gravity_force())
-            .map(|(a, b)| a * b)
-            .sum::<f64>(),
-        dissipated: 0.0,
-        e0: ev.energy,
-        balance_error: 0.0,
-        max_kinetic: 0.0,
-    };
+    let mut ledger = Ledger::new(beam, &st.q, ev.energy);
     let mut en = ledger.energies(beam, 0.0, &st.q, &st.vf, &mut w.mv, ev.energy);
     observer(Frame {
         t: 0.0,
