@@ -123,21 +123,7 @@ impl Integrator {
 
     /// Energies of `state` from the loads already evaluated (no extra load evaluation).
     pub fn energies(&self, model: &FineModel, state: &ModelState) -> Energies {
-        let mut e = Energies {
-            friction_work: state.friction_work,
-            ..Default::default()
-        };
-        for ((w, s), l) in model.wires.iter().zip(&state.wires).zip(&self.loads) {
-            e.spring += l.spring_energy;
-            e.gravity += l.gravity_energy;
-            e.contact += l.contact_energy;
-            e.friction_stored += l.friction_energy;
-            for (k, seg) in w.chain.segments.iter().enumerate() {
-                e.kinetic_translation += 0.5 * seg.mass * s.velocities[k].norm_squared();
-                e.kinetic_rotation += seg.rotational_energy(&s.poses[k], &s.angular_momenta[k]);
-            }
-        }
-        e
+        model.energies_from_loads(state, &self.loads)
     }
 }
 

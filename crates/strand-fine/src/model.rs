@@ -378,11 +378,16 @@ impl FineModel {
     /// Energies at `state` (computes loads into `loads`).
     pub fn energies(&self, state: &ModelState, loads: &mut [WireLoads]) -> Energies {
         self.compute_loads(state, 1.0, loads);
+        self.energies_from_loads(state, loads)
+    }
+
+    /// Energies at `state` from loads already evaluated there (no load evaluation).
+    pub fn energies_from_loads(&self, state: &ModelState, loads: &[WireLoads]) -> Energies {
         let mut e = Energies {
             friction_work: state.friction_work,
             ..Default::default()
         };
-        for ((w, s), l) in self.wires.iter().zip(&state.wires).zip(loads.iter()) {
+        for ((w, s), l) in self.wires.iter().zip(&state.wires).zip(loads) {
             e.spring += l.spring_energy;
             e.gravity += l.gravity_energy;
             e.contact += l.contact_energy;
