@@ -73,6 +73,10 @@ enum Command {
         /// a time series that ParaView opens.
         #[arg(long)]
         vtk: bool,
+        /// Run only this model of the scene (`equivalent`, `traditional` or `fine`);
+        /// repeat for several. Default: every model the scene names.
+        #[arg(long = "model", value_name = "MODEL")]
+        models: Vec<String>,
     },
 }
 
@@ -97,7 +101,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             law,
             json,
         } => section(&scene, strain, curvature, at, law.map(Into::into), json),
-        Command::Run { scene, out, vtk } => run_scene(&scene, out, vtk),
+        Command::Run {
+            scene,
+            out,
+            vtk,
+            models,
+        } => run_scene(&scene, out, vtk, &models),
     }
 }
 
@@ -147,8 +156,41 @@ impl Progress {
     }
 }
 
-fn run_scene(path: &std::path::Path, out: PathBuf, vtk: bool) -> anyhow::Result<()> {
-    let scene = Scene::load(path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+fn run_scene(
+    path: &std::path::Path,
+    out: PathBuf,
+    vtk: bool,
+    only: &[String],
+) -> anyhow::Result<()> {
+    let mut scene = Scene::load(path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    if !only.is_empty() {
+        for m in only {
+            let named = match m.as_str() {
+                "equivalent" => scene.models.equivalent.is_some(),
+                "traditional" => scene.models.traditional.is_some(),
+                "fine" => scene.models.fine.is_some(),
+                other => anyhow::bail!(
+                    "--model {other}: unknown model (expected equivalent, traditional or fine)"
+                ),
+            };
+            if !named {
+                anyhow::bail!(
+                    "--model {m}: the scene {} has no models.{m}",
+                    path.display()
+                );
+            }
+        }
+        let keep = |m: &str| only.iter().any(|o| o == m);
+        if !keep("equivalent") {
+            scene.models.equivalent = None;
+        }
+        if !keep("traditional") {
+            scene.models.traditional = None;
+        }
+        if !keep("fine") {
+            scene.models.fine = None;
+        }
+    }
     let mut progress = Progress::new();
     let opts = strand_scene::RunOptions {
         out: out.clone(),

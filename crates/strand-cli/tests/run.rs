@@ -72,7 +72,15 @@ fn static_scene_writes_centerline_wires_and_summary() {
 
 #[test]
 fn dynamic_scene_writes_tip_energy_and_vtk() {
-    let out = run("validation/paper-fig8-pinned.json", "dynamic", &["--vtk"]);
+    let out = run(
+        "validation/paper-fig8-pinned.json",
+        "dynamic",
+        &["--vtk", "--model", "equivalent", "--model", "traditional"],
+    );
+    assert!(
+        !out.join("fine").exists(),
+        "--model leaves the fine model out"
+    );
     let dir = out.join("equivalent");
     let s = summary(&dir.join("summary.json"));
     assert_eq!(s["analysis"], "dynamic");

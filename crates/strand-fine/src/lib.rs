@@ -49,10 +49,11 @@ pub use contact::{
 pub use dynamics::{Integrator, stable_time_step};
 pub use joint::{JointLoad, JointSpring, JointStiffness};
 pub use model::{
-    Anchor, Discretisation, End, Energies, FineModel, ModelState, Support, Wire, WireLoads,
+    Anchor, Discretisation, End, Energies, FineModel, ModelState, Support, Tie, Wire, WireLoads,
     WireState,
 };
 pub use segment::{Pose, Segment};
 pub use statics::{
     RelaxationOptions, StaticError, StaticOptions, StaticReport, solve_relaxation, solve_static,
+    solve_static_with_progress,
 };

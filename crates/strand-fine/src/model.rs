@@ -136,6 +136,21 @@ impl Wire {
     }
 }
 
+/// A joint binding a helical wire's end segment to the core's end segment (the wires bound
+/// together at a strand end, as by a clamp band or a weld).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tie {
+    /// Helical wire (index into [`FineModel::wires`], at least 1).
+    pub wire: usize,
+    /// Segment of the helical wire.
+    pub segment: usize,
+    /// Segment of the core.
+    pub core_segment: usize,
+    /// The joint: body `a` is the core segment, body `b` the wire segment, attached at the
+    /// wire's end point.
+    pub joint: JointSpring,
+}
+
 /// How to discretise a strand.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Discretisation {
@@ -152,6 +167,8 @@ pub struct FineModel {
     pub wires: Vec<Wire>,
     /// Gravity (m/s^2), scaled by the load factor in static solves.
     pub gravity: Vector3<f64>,
+    /// Joints binding the helical wires to the core at a strand end ([`FineModel::bind_end`]).
+    pub ties: Vec<Tie>,
 }
 
 impl FineModel {
@@ -185,6 +202,7 @@ impl FineModel {
         Self {
             wires,
             gravity: Vector3::zeros(),
+            ties: Vec::new(),
         }
     }
 
@@ -203,6 +221,7 @@ impl FineModel {
         Self {
             wires: vec![w],
             gravity: Vector3::zeros(),
+            ties: Vec::new(),
         }
     }
 
@@ -255,6 +274,36 @@ impl FineModel {
                 }
             }
             w.contacts = points;
+        }
+    }
+
+    /// Binds every helical wire to the core at the end `end`: a joint from the wire's end
+    /// point to the core's end segment, relaxed at rest, with the springs of half a wire
+    /// segment (as a support).
+    pub fn bind_end(&mut self, end: End) {
+        let (core, helical) = self.wires.split_at(1);
+        let core = &core[0].chain;
+        let cs = match end {
+            End::Start => 0,
+            End::End => core.len() - 1,
+        };
+        for (i, w) in helical.iter().enumerate() {
+            let c = &w.chain;
+            let (k, offset) = match end {
+                End::Start => (0, c.segments[0].start_offset()),
+                End::End => (c.len() - 1, c.segments[c.len() - 1].end_offset()),
+            };
+            let point = c.rest[k].point(&offset);
+            let on_core = core.rest[cs]
+                .rotation
+                .inverse_transform_vector(&(point - core.rest[cs].position));
+            let stiffness = c.section.joint_stiffness(0.5 * c.segments[k].length);
+            self.ties.push(Tie {
+                wire: i + 1,
+                segment: k,
+                core_segment: cs,
+                joint: JointSpring::at_rest(&core.rest[cs], on_core, &c.rest[k], offset, stiffness),
+            });
         }
     }
 
@@ -361,6 +410,19 @@ impl FineModel {
                 core.forces[c.core_segment] += c.force_core;
                 core.torques[c.core_segment] += c.torque_core;
             }
+        }
+        // Ties, in a fixed order; their energy is booked on the core.
+        for t in &self.ties {
+            let l = t.joint.evaluate(
+                &core_poses[t.core_segment],
+                &state.wires[t.wire].poses[t.segment],
+            );
+            core.forces[t.core_segment] += l.force_a;
+            core.torques[t.core_segment] += l.torque_a;
+            let w = &mut helical[t.wire - 1];
+            w.forces[t.segment] += l.force_b;
+            w.torques[t.segment] += l.torque_b;
+            core.spring_energy += l.energy;
         }
     }
 
@@ -543,6 +605,33 @@ mod tests {
         assert!(t <= 1e-12 * t0, "torque {t} vs {t0}");
         let e = m.energies(&state, &mut loads);
         assert!(e.spring.abs() < 1e-20, "{}", e.spring);
+    }
+
+    #[test]
+    fn wires_bound_at_the_free_end_rest_and_move_rigidly_without_load() {
+        let mut m = paper_model();
+        m.bind_end(End::End);
+        assert_eq!(m.ties.len(), 6);
+        let mut state = m.rest_state();
+        let mut loads = m.load_buffers();
+        m.compute_loads(&state, 1.0, &mut loads);
+        let (f0, _) = typical_force(&m);
+        assert!(max_loads(&loads).0 <= 1e-12 * f0);
+        // Pulling the core's end segment away from the wires loads the ties: equal and
+        // opposite forces on the core and on the wires' end segments.
+        let last = m.wires[0].chain.len() - 1;
+        state.wires[0].poses[last].position.x += 1e-6;
+        m.compute_loads(&state, 1.0, &mut loads);
+        let on_wires: Vector3<f64> = loads[1..]
+            .iter()
+            .map(|l| l.forces.iter().sum::<Vector3<f64>>())
+            .sum();
+        let on_core: Vector3<f64> = loads[0].forces.iter().sum();
+        assert!(
+            on_wires.x > 0.0,
+            "the ties pull the wires along: {on_wires}"
+        );
+        assert!((on_wires + on_core).norm() <= 1e-9 * on_wires.norm());
     }
 
     #[test]

@@ -214,6 +214,16 @@ pub fn solve_static(
     state: &mut ModelState,
     options: &StaticOptions,
 ) -> Result<StaticReport, StaticError> {
+    solve_static_with_progress(model, state, options, &mut |_| {})
+}
+
+/// [`solve_static`] reporting the load factor reached after every load step to `progress`.
+pub fn solve_static_with_progress(
+    model: &FineModel,
+    state: &mut ModelState,
+    options: &StaticOptions,
+    progress: &mut dyn FnMut(f64),
+) -> Result<StaticReport, StaticError> {
     faer::set_global_parallelism(faer::Par::Seq);
     let n = 6 * model.segment_count();
     let sc = scales(model, options);
@@ -323,6 +333,7 @@ pub fn solve_static(
         }
         iterations += it;
         residual = rel;
+        progress(lambda);
         // The load step is accepted: commit the contact histories.
         model.compute_loads(state, lambda, &mut loads);
         model.commit_contacts(state, &loads);

@@ -160,7 +160,7 @@ impl FineModel {
         out
     }
 
-    /// Tangents of the joints and anchors at `state`.
+    /// Tangents of the joints, anchors and ties at `state`.
     pub fn joint_tangents(&self, state: &ModelState) -> Vec<ElementTangent> {
         let offsets = self.segment_offsets();
         let per_wire: Vec<Vec<ElementTangent>> = self
@@ -187,7 +187,19 @@ impl FineModel {
                 out
             })
             .collect();
-        per_wire.into_iter().flatten().collect()
+        let mut out: Vec<ElementTangent> = per_wire.into_iter().flatten().collect();
+        for t in &self.ties {
+            let (a, b) = (
+                &state.wires[0].poses[t.core_segment],
+                &state.wires[t.wire].poses[t.segment],
+            );
+            let l = self.wires[t.wire].chain.segments[t.segment].length;
+            out.push(ElementTangent {
+                segments: [Some(t.core_segment), Some(offsets[t.wire] + t.segment)],
+                stiffness: t.joint.stiffness(a, b, l),
+            });
+        }
+        out
     }
 }
 

@@ -111,6 +111,7 @@ fn press_and_pull(pull_ratio: f64) -> (f64, ContactState, f64, f64, f64) {
     let mut m = FineModel {
         wires: vec![core, wire],
         gravity: Vector3::zeros(),
+        ties: Vec::new(),
     };
     let opts = ContactOptions {
         points_per_segment: 1,

@@ -6,6 +6,7 @@
 pub mod format;
 pub mod output;
 mod run;
+mod run_fine;
 mod scene;
 
 pub use run::{RunError, RunOptions, RunSummary, run_scene};

@@ -101,7 +101,7 @@ pub enum RunError {
     },
 }
 
-fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> RunError + '_ {
+pub(crate) fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> RunError + '_ {
     move |source| RunError::Io {
         path: path.display().to_string(),
         source,
@@ -129,10 +129,8 @@ pub fn run_scene(
             out.push(run_beam(scene, name, m, law, opts, progress)?);
         }
     }
-    if scene.models.fine.is_some() {
-        eprintln!(
-            "warning: the scene names the fine model, which `strand run` cannot run yet; skipped"
-        );
+    if let Some(m) = &scene.models.fine {
+        out.push(crate::run_fine::run_fine(scene, m, opts, progress)?);
     }
     Ok(out)
 }

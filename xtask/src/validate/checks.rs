@@ -205,13 +205,15 @@ pub fn energy_balance(
             } else {
                 frames.max(every_step)
             };
-            Row::measured(scene, CHECK, model, rel, "", Bound::AtMost(tol.relative)).with_note(
-                format!(
-                    "{frames:.2e} over the output frames, {every_step:.2e} over every step; \
+            let limit = match (model, tol.fine) {
+                ("fine", Some(f)) => f,
+                _ => tol.relative,
+            };
+            Row::measured(scene, CHECK, model, rel, "", Bound::AtMost(limit)).with_note(format!(
+                "{frames:.2e} over the output frames, {every_step:.2e} over every step; \
                      dissipated {:.3e} J",
-                    e.last()[3]
-                ),
-            )
+                e.last()[3]
+            ))
         }
         Err(e) => Row::failed(scene, CHECK, model, format!("{e:#}")),
     }

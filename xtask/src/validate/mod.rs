@@ -210,9 +210,9 @@ impl SceneRun<'_> {
             Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
                 Err(anyhow::anyhow!("clearing {}: {e}", self.out.display()))
             }
-            _ => self.run(self.scene, &self.out, &name),
+            _ => self.run(&self.models(false), &self.out, &name),
         };
-        let summaries = match run {
+        let mut summaries = match run {
             Ok(s) => s,
             Err(e) => {
                 return specs
@@ -221,9 +221,22 @@ impl SceneRun<'_> {
                     .collect();
             }
         };
+        // The fine model runs on its own (minutes per scene), only for a comparison with it
+        // and not in the quick set; its failure fails that comparison, not the beam checks.
+        let wants_fine = specs
+            .iter()
+            .any(|c| matches!(c, CheckSpec::EquivalentVsFine(_)));
+        let mut fine_error = None;
+        if wants_fine && !self.args.quick && self.scene.models.fine.is_some() {
+            match self.run(&self.models(true), &self.out, &name) {
+                Ok(s) => summaries.extend(s),
+                Err(e) => fine_error = Some(format!("{e:#}")),
+            }
+        }
+        let fine_error = fine_error.as_deref();
         let mut rows = Vec::new();
         for spec in specs {
-            let mut r = self.apply(spec, &summaries);
+            let mut r = self.apply(spec, &summaries, fine_error);
             for row in &mut r {
                 row.why = spec.why().to_string();
             }
@@ -233,7 +246,12 @@ impl SceneRun<'_> {
     }
 
     /// The rows of one check on the scene's run.
-    fn apply(&self, spec: &CheckSpec, summaries: &[RunSummary]) -> Vec<Row> {
+    fn apply(
+        &self,
+        spec: &CheckSpec,
+        summaries: &[RunSummary],
+        fine_error: Option<&str>,
+    ) -> Vec<Row> {
         let name = self.scene.name.clone();
         let summary = |m: &str| summaries.iter().find(|s| s.model == m);
         let mut rows = Vec::new();
@@ -301,7 +319,8 @@ impl SceneRun<'_> {
                 let dynamic = matches!(self.scene.analysis, Analysis::Dynamic(_));
                 let mut snaps = BTreeMap::new();
                 let mut failed = Vec::new();
-                for s in summaries {
+                // Golden files hold the beam models (the fine model runs in the full set only).
+                for s in summaries.iter().filter(|s| s.model != "fine") {
                     match golden::ModelSnapshot::take(
                         &self.out.join(&s.model),
                         s.tip,
@@ -344,18 +363,39 @@ impl SceneRun<'_> {
                         dynamic,
                         t,
                     ));
+                } else if let Some(e) = fine_error {
+                    rows.push(Row::failed(
+                        &name,
+                        spec.name(),
+                        "-",
+                        format!("fine model: {e}"),
+                    ));
                 } else {
                     rows.push(Row::not_available(
                         &name,
                         spec.name(),
-                        "the shared runner produced no fine-model run (the fine model is not \
-                         wired into it yet), so there is nothing to compare; this row is not a \
-                         pass",
+                        "the fine model runs in the full validation only (minutes per scene); \
+                         this row is not a pass",
                     ));
                 }
             }
         }
         rows
+    }
+
+    /// The scene with only its beam models (`fine` false) or only its fine model.
+    fn models(&self, fine: bool) -> Scene {
+        let mut scene = self.scene.clone();
+        if fine {
+            scene.models.equivalent = None;
+            scene.models.traditional = None;
+            scene.file.models.equivalent = None;
+            scene.file.models.traditional = None;
+        } else {
+            scene.models.fine = None;
+            scene.file.models.fine = None;
+        }
+        scene
     }
 
     /// Statics of the equivalent model with n, 2n, 4n elements against the elastica: the

@@ -81,6 +81,10 @@ pub struct TensionTol {
 pub struct EnergyTol {
     /// Largest relative balance error.
     pub relative: f64,
+    /// Largest relative balance error of the fine model (its explicit integrator at its
+    /// stable step); default `relative`.
+    #[serde(default)]
+    pub fine: Option<f64>,
     /// Why this limit.
     pub why: String,
     /// Run this check in `--quick`.

@@ -1,0 +1,546 @@
+//! Runs the fine finite-segment model of a scene (SPEC 4) and writes its result files.
+//!
+//! The fine model is laid along +X from the origin; a scene with another initial direction
+//! runs in that frame with gravity rotated into it, and every written position and velocity is
+//! rotated back, so the results are in the scene's axes.
+//!
+//! Measured quantities along the strand (`centerline.csv`), at every node of the core's
+//! centreline (its ends and the midpoints of its joint gaps):
+//! * curvature: the bending part of the core joint's relative rotation over the distance
+//!   between the segment centres (at a clamp, the anchor's rotation over half a segment;
+//!   zero at a free or pinned end);
+//! * the resultant the near part of the strand exerts on the far part across the section
+//!   normal to the core there, from the momentum balance of the far part: every segment
+//!   (all wires) whose centre lies beyond the section at rest contributes its total load
+//!   minus its gravity; the internal loads of the far part cancel. The tension is minus the
+//!   force's component along the core's tangent, the bending moment the magnitude of the
+//!   moment's component normal to it, and `bending_stiffness` their ratio M / kappa. In
+//!   statics the far part's total load is the equilibrium residual (zero), so the moment is
+//!   that of the far part's weight.
+
+use std::path::Path;
+use std::time::Instant;
+
+use nalgebra::{UnitQuaternion, Vector3};
+use strand_fine as fine;
+use strand_fine::{
+    ContactOptions, ContactState, Discretisation, FineModel, Integrator, ModelState, WireLoads,
+};
+
+use crate::output::{Csv, number, write_vtk_polyline};
+use crate::run::{RunError, RunOptions, RunSummary, io_err};
+use crate::scene::{Analysis, End, IntegratorKind, Scene, SupportKind};
+
+/// Safety factor on the explicit stable step of the fine model.
+const STEP_SAFETY: f64 = 0.9;
+
+fn support(scene: &Scene, end: End) -> fine::Support {
+    match scene.supports.iter().find(|s| s.at == end).map(|s| s.kind) {
+        None => fine::Support::Free,
+        Some(SupportKind::Clamped) => fine::Support::Clamped,
+        Some(SupportKind::Pinned) => fine::Support::Pinned,
+    }
+}
+
+/// Rotation taking +X to the scene's initial direction.
+fn frame(direction: [f64; 3]) -> UnitQuaternion<f64> {
+    let d = Vector3::from(direction).normalize();
+    UnitQuaternion::rotation_between(&Vector3::x(), &d).unwrap_or_else(|| {
+        // Antiparallel: half a turn about Z.
+        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), std::f64::consts::PI)
+    })
+}
+
+/// Runs the fine model `m` of `scene` and writes `DIR/fine/`.
+pub(crate) fn run_fine(
+    scene: &Scene,
+    m: &crate::scene::FineModel,
+    opts: &RunOptions,
+    progress: &mut dyn FnMut(&str, f64),
+) -> Result<RunSummary, RunError> {
+    let name = "fine";
+    let strand = &scene.strand;
+    let rot = frame(scene.direction);
+    let n = m.segments_per_wire;
+    let mut model = FineModel::from_strand(
+        strand,
+        Discretisation {
+            core_segments: n,
+            wire_segments: n,
+        },
+        support(scene, End::Start),
+        support(scene, End::End),
+    );
+    model.gravity = rot.inverse() * Vector3::from(scene.gravity);
+    let mut bound = None;
+    if m.bind_free_end {
+        for (end, e) in [(End::Start, fine::End::Start), (End::End, fine::End::End)] {
+            if support(scene, end) == fine::Support::Free && strand.layer().is_some() {
+                model.bind_end(e);
+                bound = Some(end);
+            }
+        }
+    }
+    let contact = ContactOptions {
+        penetration: m.penetration,
+        ..ContactOptions::default()
+    };
+    model.add_contacts(strand, &contact);
+    let dir = opts.out.join(name);
+    std::fs::create_dir_all(&dir).map_err(io_err(&dir))?;
+
+    let mut built = vec![format!(
+        "finite-segment chains: core and {} helical wires, {n} rigid segments each ({} in all)",
+        model.wires.len() - 1,
+        model.segment_count()
+    )];
+    if let Some(end) = bound {
+        built.push(format!(
+            "helical wires bound to the core at the free {} end",
+            if end == End::Start { "start" } else { "end" }
+        ));
+    }
+    let mut warnings = Vec::new();
+    if let Some(layer) = strand.layer() {
+        built.push(format!(
+            "{} wire-to-core contacts (penalty for a penetration of {:.1e} wire diameters, \
+             Coulomb friction mu = {} with stick springs)",
+            model.contact_count(),
+            m.penetration,
+            strand.friction()
+        ));
+        let gap = layer.wire_gap();
+        if gap <= 0.05 * layer.spec.wire.diameter {
+            warnings.push(format!(
+                "the helical wires are {gap:.3e} m apart: wire-to-wire contact in the layer is \
+                 not modelled"
+            ));
+        }
+    }
+    let mut summary = RunSummary {
+        scene: scene.name.clone(),
+        model: name.into(),
+        law: "contact and friction (no section law)".into(),
+        analysis: String::new(),
+        status: "ok".into(),
+        error: None,
+        dofs: 6 * model.segment_count(),
+        elements: model.segment_count(),
+        integration_points: 0,
+        steps: 0,
+        newton_iterations: 0,
+        wall_time_s: 0.0,
+        tip: [f64::NAN; 3],
+        time_step: None,
+        stable_time_step: None,
+        energy_balance_error: None,
+        energy_balance_relative: None,
+        dissipated: None,
+        built,
+        warnings,
+    };
+    let mut state = model.rest_state();
+    let result = match scene.analysis {
+        Analysis::Static { load_steps } => {
+            summary.analysis = "static".into();
+            run_static(&model, &mut state, load_steps, &mut summary, &mut |f| {
+                progress(name, f)
+            })
+        }
+        Analysis::Dynamic(dy) => {
+            summary.analysis = "dynamic".into();
+            let stable = fine::stable_time_step(&model, &state, STEP_SAFETY);
+            summary.stable_time_step = Some(stable);
+            let dt = match (dy.integrator, dy.time_step) {
+                (IntegratorKind::Verlet, Some(dt)) if dt > stable => Err(format!(
+                    "analysis.time_step: {dt:e} s is above the fine model's stable step \
+                     {stable:.3e} s"
+                )),
+                (IntegratorKind::Verlet, Some(dt)) => Ok(dt),
+                (IntegratorKind::Verlet, None) => Ok(stable),
+                (IntegratorKind::GeneralizedAlpha, _) => {
+                    summary.warnings.push(format!(
+                        "the fine model integrates explicitly (symplectic kick-drift-kick) at \
+                         its stable step {stable:.3e} s; the scene's generalized-alpha step \
+                         applies to the beam models"
+                    ));
+                    Ok(stable)
+                }
+            };
+            match dt {
+                Err(e) => Err(e),
+                Ok(dt) => {
+                    summary.time_step = Some(dt);
+                    run_dynamic(
+                        &model,
+                        &mut state,
+                        &Frames {
+                            duration: dy.duration,
+                            dt,
+                            interval: dy.output_interval,
+                        },
+                        rot,
+                        &dir,
+                        opts.vtk,
+                        &mut summary,
+                        &mut |f| progress(name, f),
+                    )
+                }
+            }
+        }
+    };
+    // The final (or last computed) state along the strand, and the contact states.
+    let written = write_state(&model, &state, rot, &dir);
+    summary.tip = (rot
+        * model
+            .core_centreline(&state)
+            .last()
+            .copied()
+            .unwrap_or_default())
+    .into();
+    let result = result.and(written);
+    if let Err(message) = &result {
+        summary.status = "failed".into();
+        summary.error = Some(message.clone());
+    }
+    let path = dir.join("summary.json");
+    let text = serde_json::to_string_pretty(&summary).expect("summary serializes");
+    std::fs::write(&path, text + "\n").map_err(io_err(&path))?;
+    match result {
+        Ok(()) => Ok(summary),
+        Err(message) => Err(RunError::Solve {
+            model: name.to_string(),
+            message,
+            dir: dir.display().to_string(),
+        }),
+    }
+}
+
+fn run_static(
+    model: &FineModel,
+    state: &mut ModelState,
+    load_steps: usize,
+    summary: &mut RunSummary,
+    progress: &mut dyn FnMut(f64),
+) -> Result<(), String> {
+    let opts = fine::StaticOptions {
+        load_steps,
+        ..fine::StaticOptions::default()
+    };
+    let t0 = Instant::now();
+    let report = fine::solve_static_with_progress(model, state, &opts, progress);
+    summary.wall_time_s = t0.elapsed().as_secs_f64();
+    let report = report.map_err(|e| e.to_string())?;
+    summary.steps = report.load_steps;
+    summary.newton_iterations = report.iterations;
+    summary.built.push(format!(
+        "static equilibrium: Newton on the sparse tangent, residual {:.2e} of the largest \
+         segment weight",
+        report.residual
+    ));
+    Ok(())
+}
+
+/// Time stepping and output frames of a dynamic run.
+struct Frames {
+    duration: f64,
+    dt: f64,
+    interval: f64,
+}
+
+fn run_dynamic(
+    model: &FineModel,
+    state: &mut ModelState,
+    frames: &Frames,
+    rot: UnitQuaternion<f64>,
+    dir: &Path,
+    vtk: bool,
+    summary: &mut RunSummary,
+    progress: &mut dyn FnMut(f64),
+) -> Result<(), String> {
+    let io = |p: &Path| {
+        let p = p.display().to_string();
+        move |e: std::io::Error| format!("writing {p}: {e}")
+    };
+    let pt = dir.join("tip.csv");
+    let mut tip = Csv::create(&pt, &["t", "x", "y", "z", "vx", "vy", "vz"]).map_err(io(&pt))?;
+    let pe = dir.join("energy.csv");
+    let mut energy = Csv::create(
+        &pe,
+        &[
+            "t",
+            "kinetic",
+            "gravity",
+            "elastic",
+            "dissipated",
+            "total",
+            "kinetic_rotation",
+            "contact",
+            "friction_stored",
+        ],
+    )
+    .map_err(io(&pe))?;
+    let vtk_dir = dir.join("vtk");
+    if vtk {
+        std::fs::create_dir_all(&vtk_dir).map_err(io(&vtk_dir))?;
+    }
+    let core = &model.wires[0].chain;
+    let last = core.len() - 1;
+    let tip_offset = core.segments[last].end_offset();
+    // The step is shortened so that output times fall on steps.
+    let every = ((frames.interval / frames.dt).ceil() as usize).max(1);
+    let dt = frames.interval / every as f64;
+    let steps = ((frames.duration / dt) * (1.0 - 1e-12)).ceil() as usize;
+    summary.time_step = Some(dt);
+    let mut int = Integrator::new(model, state, dt);
+    let e0 = int.energies(model, state);
+    let (mut err, mut max_kinetic) = (0.0f64, 0.0f64);
+    let mut frame = 0usize;
+    let mut write = |t: f64, state: &ModelState, e: &fine::Energies| -> std::io::Result<()> {
+        let x = rot * state.wires[0].poses[last].point(&tip_offset);
+        let v = rot * fine::dynamics::point_velocity(model, state, 0, last, &tip_offset);
+        tip.row(&[t, x.x, x.y, x.z, v.x, v.y, v.z])?;
+        let kinetic = e.kinetic_translation + e.kinetic_rotation;
+        let elastic = e.spring + e.contact + e.friction_stored;
+        energy.row(&[
+            t,
+            kinetic,
+            e.gravity,
+            elastic,
+            e.friction_work,
+            e.balance(),
+            e.kinetic_rotation,
+            e.contact,
+            e.friction_stored,
+        ])?;
+        if vtk {
+            let pts: Vec<[f64; 3]> = model
+                .core_centreline(state)
+                .iter()
+                .map(|p| (rot * p).into())
+                .collect();
+            let path = vtk_dir.join(format!("centerline_{frame:05}.vtk"));
+            write_vtk_polyline(&path, &format!("t = {t} s"), &pts, &[])?;
+        }
+        frame += 1;
+        Ok(())
+    };
+    write(0.0, state, &e0).map_err(|e| format!("writing results: {e}"))?;
+    let t0 = Instant::now();
+    let mut failure = None;
+    for k in 1..=steps {
+        int.step(model, state);
+        let e = int.energies(model, state);
+        if !e.balance().is_finite() {
+            failure = Some(non_finite(model, state, k, int.time));
+            break;
+        }
+        err = err.max((e.balance() - e0.balance()).abs());
+        max_kinetic = max_kinetic.max(e.kinetic_translation + e.kinetic_rotation);
+        if k % every == 0 || k == steps {
+            write(int.time, state, &e).map_err(|e| format!("writing results: {e}"))?;
+            progress(int.time / frames.duration);
+        }
+    }
+    summary.wall_time_s = t0.elapsed().as_secs_f64();
+    summary.steps = int.steps as usize;
+    tip.finish().map_err(io(&pt))?;
+    energy.finish().map_err(io(&pe))?;
+    summary.energy_balance_error = Some(err);
+    summary.energy_balance_relative = Some(err / max_kinetic.max(f64::MIN_POSITIVE));
+    summary.dissipated = Some(state.friction_work);
+    summary.built.push(format!(
+        "explicit symplectic kick-drift-kick, {} steps of {:.3e} s",
+        int.steps, dt
+    ));
+    match failure {
+        Some(f) => Err(f),
+        None => Ok(()),
+    }
+}
+
+/// Diagnosis of a non-finite state: the first segment with a non-finite pose or momentum.
+fn non_finite(model: &FineModel, state: &ModelState, step: usize, t: f64) -> String {
+    for (w, ws) in state.wires.iter().enumerate() {
+        for k in 0..ws.poses.len() {
+            let p = &ws.poses[k];
+            let bad = if !p.position.iter().all(|v| v.is_finite()) {
+                Some("position")
+            } else if !p.rotation.coords.iter().all(|v| v.is_finite()) {
+                Some("rotation")
+            } else if !ws.velocities[k].iter().all(|v| v.is_finite()) {
+                Some("velocity")
+            } else if !ws.angular_momenta[k].iter().all(|v| v.is_finite()) {
+                Some("angular momentum")
+            } else {
+                None
+            };
+            if let Some(q) = bad {
+                let x = model.wires[w].chain.rest[k].position.x;
+                return format!(
+                    "non-finite {q} at step {step} (t = {t:.6e} s), wire {w} segment {k} \
+                     (x = {x:.4e} m at rest)"
+                );
+            }
+        }
+    }
+    format!("non-finite energy at step {step} (t = {t:.6e} s)")
+}
+
+/// Writes `centerline.csv` (measured along the core) and `contacts.csv` for `state`.
+fn write_state(
+    model: &FineModel,
+    state: &ModelState,
+    rot: UnitQuaternion<f64>,
+    dir: &Path,
+) -> Result<(), String> {
+    let mut loads = model.load_buffers();
+    model.compute_loads(state, 1.0, &mut loads);
+    let p = dir.join("centerline.csv");
+    let e = |e: std::io::Error| format!("writing {}: {e}", p.display());
+    let mut c = Csv::create(
+        &p,
+        &[
+            "s",
+            "x",
+            "y",
+            "z",
+            "curvature",
+            "tension",
+            "bending_stiffness",
+            "moment",
+        ],
+    )
+    .map_err(e)?;
+    for row in measure_along(model, state, &loads) {
+        let x = rot * row.position;
+        let stiffness = if row.curvature > 0.0 {
+            row.moment / row.curvature
+        } else {
+            f64::INFINITY
+        };
+        c.row(&[
+            row.s,
+            x.x,
+            x.y,
+            x.z,
+            row.curvature,
+            row.tension,
+            stiffness,
+            row.moment,
+        ])
+        .map_err(e)?;
+    }
+    c.finish().map_err(e)?;
+    let pc = dir.join("contacts.csv");
+    let ec = |e: std::io::Error| format!("writing {}: {e}", pc.display());
+    let mut cc = Csv::create(
+        &pc,
+        &[
+            "s",
+            "wire",
+            "state",
+            "normal_force",
+            "pressure",
+            "friction_force",
+        ],
+    )
+    .map_err(ec)?;
+    for (w, (wire, l)) in model.wires.iter().zip(&loads).enumerate().skip(1) {
+        for (cp, cl) in wire.contacts.iter().zip(&l.contacts) {
+            let seg = wire.chain.segments[cp.segment];
+            let s = wire.chain.rest[cp.segment].point(&cp.offset).x;
+            // Length of helical wire the contact point stands for (m).
+            let per_segment = wire
+                .contacts
+                .iter()
+                .filter(|o| o.segment == cp.segment)
+                .count();
+            let share = seg.length / per_segment as f64;
+            let state = match cl.state {
+                ContactState::Open => "open",
+                ContactState::Stick => "stick",
+                ContactState::Slip => "slip",
+            };
+            cc.text_row(&[
+                number(s),
+                w.to_string(),
+                state.to_string(),
+                number(cl.normal_force),
+                number(cl.normal_force / share),
+                number(cl.tangential_force.norm()),
+            ])
+            .map_err(ec)?;
+        }
+    }
+    cc.finish().map_err(ec)
+}
+
+/// One measured station along the core.
+struct Station {
+    s: f64,
+    position: Vector3<f64>,
+    curvature: f64,
+    tension: f64,
+    moment: f64,
+}
+
+/// Curvature, tension and bending moment at the core's centreline nodes (module docs).
+fn measure_along(model: &FineModel, state: &ModelState, loads: &[WireLoads]) -> Vec<Station> {
+    let core = &model.wires[0];
+    let poses = &state.wires[0].poses;
+    let nodes = core.chain.centreline(poses);
+    let rest_nodes = core.chain.centreline(&core.chain.rest);
+    let n = core.chain.len();
+    let mut out = Vec::with_capacity(n + 1);
+    for (i, node) in nodes.iter().enumerate() {
+        let s = rest_nodes[i].x;
+        // Tangent: the neighbouring segments' axes.
+        let t = if i == 0 {
+            poses[0].tangent()
+        } else if i == n {
+            poses[n - 1].tangent()
+        } else {
+            (poses[i - 1].tangent() + poses[i].tangent()).normalize()
+        };
+        let bend = |theta: Vector3<f64>| theta.y.hypot(theta.z);
+        let curvature = if i == 0 || i == n {
+            let seg = if i == 0 { 0 } else { n - 1 };
+            core.anchors
+                .iter()
+                .find(|a| a.segment == seg && a.joint.stiffness.rotational.y > 0.0)
+                .map_or(0.0, |a| {
+                    bend(a.joint.rotation_strain(&a.ground, &poses[seg]))
+                        / (0.5 * core.chain.segments[seg].length)
+                })
+        } else {
+            let j = &core.chain.joints[i - 1];
+            let l = (poses[i].position - poses[i - 1].position).norm();
+            bend(j.rotation_strain(&poses[i - 1], &poses[i])) / l
+        };
+        // Resultant on the far part (every segment whose rest centre lies beyond s).
+        let (mut force, mut moment) = (Vector3::zeros(), Vector3::zeros());
+        for ((w, ws), l) in model.wires.iter().zip(&state.wires).zip(loads) {
+            for (k, seg) in w.chain.segments.iter().enumerate() {
+                if w.chain.rest[k].position.x <= s {
+                    continue;
+                }
+                let f = l.forces[k] - model.gravity * seg.mass;
+                let r = ws.poses[k].position - node;
+                force += f;
+                moment += l.torques[k] + r.cross(&f);
+            }
+        }
+        // `force`, `moment`: the near part's action on the far part (the far part's own
+        // internal loads cancel in the sums).
+        let bending = moment - t * moment.dot(&t);
+        out.push(Station {
+            s,
+            position: *node,
+            curvature,
+            tension: -force.dot(&t),
+            moment: bending.norm(),
+        });
+    }
+    out
+}
