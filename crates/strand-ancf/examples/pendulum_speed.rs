@@ -130,7 +130,11 @@ fn main() {
             .ok()
             .map(|v| v.parse().expect("PENDULUM_POINTS is a count"));
         let b = beam(kind, points);
-        println!("law {law}: {} dofs, {} bending points", b.dofs(), b.points());
+        println!(
+            "law {law}: {} dofs, {} bending points",
+            b.dofs(),
+            b.points()
+        );
         let alpha = |step: f64, rho: f64| Scheme::GeneralizedAlpha {
             step,
             spectral_radius: rho,
@@ -140,7 +144,7 @@ fn main() {
         if let Ok(only) = std::env::var("PENDULUM_ONLY") {
             let step: f64 = only.parse().expect("PENDULUM_ONLY is a step in seconds");
             let (s, t, e, _) = timed(&b, alpha(step, RHO), 1, None);
-            report(&format!("gen-alpha {step:.0e} s rho {RHO}"), &s, t, e);
+            report(&format!("gen-alpha {step:.1e} s rho {RHO}"), &s, t, e);
             continue;
         }
         // The reference always uses the default quadrature.
@@ -153,7 +157,7 @@ fn main() {
         // Steps that divide the 10 ms output interval, so that frames fall on the same times.
         for step in [1e-3, 2e-3, 2.5e-3, 5e-3, 1e-2] {
             let (s, t, e, _) = timed(&b, alpha(step, RHO), REPEAT, r);
-            report(&format!("gen-alpha {step:.0e} s rho {RHO}"), &s, t, e);
+            report(&format!("gen-alpha {step:.1e} s rho {RHO}"), &s, t, e);
         }
     }
 }
