@@ -195,8 +195,13 @@ fn solve_factored(a: &BandMatrix, pivots: &[usize], b: &mut [f64]) {
         let hi = (i + kl + ku).min(n - 1);
         let row = a.index(i, i);
         let upper = &a.data[row + 1..=row + (hi - i)];
-        let s: f64 = upper.iter().zip(&b[i + 1..=hi]).map(|(u, x)| u * x).sum();
-        b[i] = (b[i] - s) / a.data[row];
+        // Sequential subtraction (not a separate sum): the ill-conditioned statics of very
+        // thin strands (EA L^2 / EI = 1e7) are sensitive to the rounding of this loop.
+        let mut s = b[i];
+        for (u, x) in upper.iter().zip(&b[i + 1..=hi]) {
+            s -= u * x;
+        }
+        b[i] = s / a.data[row];
     }
 }
 
