@@ -94,5 +94,40 @@ fn integrators(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, assembly, integrators);
+/// The paper's section-3 pendulum exactly as `validation/paper-fig14-pendulum.json` sets it
+/// up (gravity 9.8 m/s^2, 1 s), solved by generalized-alpha at 1 ms steps (spectral radius
+/// 0.9, the scenes' default); only the solve is timed. See also `examples/pendulum_speed.rs`,
+/// which reports steps, iterations and the tip error against a converged run.
+fn paper_pendulum(c: &mut Criterion) {
+    let mut g = c.benchmark_group("paper-fig14 pendulum, 1 s, generalized-alpha 1 ms");
+    g.sample_size(10);
+    for kind in [LawKind::Constant, LawKind::Hysteretic] {
+        let s = section3(1.0);
+        let b = Beam::new(
+            BeamSpec {
+                elements: 30,
+                bending_points: None,
+                mass_per_length: s.mass_per_length(),
+                element: ElementKind::Planar,
+                direction: [1.0, 0.0, 0.0],
+                gravity: [0.0, -9.8, 0.0],
+                start: Some(Support::Pinned),
+                end: None,
+            },
+            SectionLaw::new(&s, kind),
+        )
+        .unwrap();
+        let scheme = Scheme::GeneralizedAlpha {
+            step: 1e-3,
+            spectral_radius: 0.9,
+        };
+        let o = DynamicOptions::new(1.0, scheme, 0.01);
+        g.bench_function(kind.name(), |bch| {
+            bch.iter(|| run_dynamic(&b, &o, &mut |_| {}).unwrap())
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, assembly, integrators, paper_pendulum);
 criterion_main!(benches);

@@ -74,10 +74,13 @@ impl BandMatrix {
 
     /// `y = A x`.
     pub fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
-        for i in 0..self.n {
+        let w = self.width();
+        for (i, yi) in y.iter_mut().enumerate().take(self.n) {
             let lo = i.saturating_sub(self.kl);
             let hi = (i + self.ku).min(self.n - 1);
-            y[i] = (lo..=hi).map(|j| self.data[self.index(i, j)] * x[j]).sum();
+            let start = i * w + (lo + self.kl - i);
+            let row = &self.data[start..start + (hi - lo + 1)];
+            *yi = row.iter().zip(&x[lo..=hi]).map(|(a, b)| a * b).sum();
         }
     }
 
@@ -178,18 +181,25 @@ fn solve_factored(a: &BandMatrix, pivots: &[usize], b: &mut [f64]) {
         }
         let bk = b[k];
         if bk != 0.0 {
-            for i in k + 1..=(k + kl).min(n - 1) {
-                b[i] -= a.data[a.index(i, k)] * bk;
+            // Entry (i, k) of row i sits at offset k + kl - i: one row down is w - 1 further.
+            let step = a.width() - 1;
+            let mut idx = a.index(k, k) + step;
+            for bi in &mut b[k + 1..=(k + kl).min(n - 1)] {
+                *bi -= a.data[idx] * bk;
+                idx += step;
             }
         }
     }
     // Backward: U has kl + ku super-diagonals.
     for i in (0..n).rev() {
         let hi = (i + kl + ku).min(n - 1);
-        let mut s = b[i];
         let row = a.index(i, i);
-        for d in 1..=hi - i {
-            s -= a.data[row + d] * b[i + d];
+        let upper = &a.data[row + 1..=row + (hi - i)];
+        // Sequential subtraction (not a separate sum): the ill-conditioned statics of very
+        // thin strands (EA L^2 / EI = 1e7) are sensitive to the rounding of this loop.
+        let mut s = b[i];
+        for (u, x) in upper.iter().zip(&b[i + 1..=hi]) {
+            s -= u * x;
         }
         b[i] = s / a.data[row];
     }

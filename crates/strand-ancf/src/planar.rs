@@ -5,8 +5,25 @@
 //!
 //! ```text
 //! eps   = |r'| - 1                                  axial strain (SPEC 3)
-//! kappa = (r' x r'')_z / |r'|^3                     signed curvature, kappa_z of the section
+//! kappa = (r' x r'')_z / |r'|^2                     signed curvature, kappa_z of the section
 //! ```
+//!
+//! # Curvature per reference length
+//!
+//! `kappa` is the rotation of the tangent per unit *reference* (material) length `x`, in 1/m:
+//! with `t = (cos theta, sin theta)`, `r' = |r'| t` and `r'' = |r'|' t + |r'| theta' n`, so
+//! `(r' x r'')_z = |r'|^2 d theta/dx`. This is the geometrically exact (Reissner) bending
+//! strain, conjugate to the moment in the virtual work per reference length of eq. (28); the
+//! paper's (and SPEC 3's) `(r' x r'')_z / |r'|^3` is the curvature per *deformed* length,
+//! `kappa_def = kappa / (1 + eps)`. The two differ only at order `eps`, but the choice decides
+//! which force is conjugate to `eps`: with `W(eps, kappa)` per reference length the axial
+//! resultant is `dW/deps` at fixed `kappa`. With the Reissner measure that is `EA eps = T`,
+//! the physical tension (equilibrium of a cut), which the section law's friction limits need
+//! (wire axial stress `sigma_a = E_w cos^2(alpha) eps`, eqs. (22b), (23)). With the deformed
+//! length measure equilibrium gives `EA eps = T + M kappa`, and near the root of the paper's
+//! soft hanging strands `M kappa` (about 1.5 N) dwarfs `T` (about 0.4 N): the friction saw far
+//! too much tension and the statics stalled at 1.2e-4 m from the elastica shooting reference
+//! (which uses `T = -q (L - s) sin(theta)`) as elements were added (`tests/statics.rs`).
 //!
 //! with analytic first and second derivatives with respect to the local variables
 //! `y = (r'_x, r'_y, r''_x, r''_y)` ([`PlanarFirst`], [`PlanarSecond`]). Element-size
@@ -15,7 +32,7 @@
 //! element combines the local derivatives of all section quantities at a Gauss point first
 //! (4 values, 4x4) and maps them to `q` once.
 //!
-//! The signed curvature is a polynomial in `(r', r'')` divided by `|r'|^3`: it is smooth
+//! The signed curvature is a polynomial in `(r', r'')` divided by `|r'|^2`: it is smooth
 //! through the straight state (`r' x r'' = 0`), and the only division is by `|r'|`, which must
 //! be positive: below [`MIN_STRETCH`](crate::MIN_STRETCH) the evaluation returns
 //! [`AncfError::DegenerateTangent`].
@@ -53,7 +70,8 @@ pub struct PlanarPoint {
 pub struct PlanarFirst {
     /// Axial strain `eps = |r'| - 1`.
     pub eps: f64,
-    /// Signed curvature `kappa = (r' x r'')_z / |r'|^3` (1/m); the section's `kappa_z`.
+    /// Signed curvature per reference length `kappa = (r' x r'')_z / |r'|^2` (1/m); the
+    /// section's `kappa_z`.
     pub kappa: f64,
     /// Unit tangent `t = r' / |r'|`.
     pub tangent: Vector2<f64>,
@@ -78,7 +96,7 @@ pub struct PlanarSecond {
 struct Core {
     n: f64,
     t: Vector2<f64>,
-    /// `1 / |r'|^3`.
+    /// `1 / |r'|^2`.
     g: f64,
     /// `(r' x r'')_z`.
     c: f64,
@@ -86,7 +104,7 @@ struct Core {
     c_a: Vector2<f64>,
     /// `d c / d r''` = `(-r'_y, r'_x)`.
     c_b: Vector2<f64>,
-    /// `d g / d r'` = `-3 r' / |r'|^5`.
+    /// `d g / d r'` = `-2 r' / |r'|^4`.
     g_a: Vector2<f64>,
 }
 
@@ -118,11 +136,11 @@ impl PlanarPoint {
         Ok(self.stretch()? - 1.0)
     }
 
-    /// Signed curvature `(r' x r'')_z / |r'|^3`.
+    /// Signed curvature per reference length `(r' x r'')_z / |r'|^2` (1/m).
     #[inline]
     pub fn curvature(&self) -> Result<f64, AncfError> {
         let n = self.stretch()?;
-        Ok(cross(&self.dr, &self.ddr) / (n * n * n))
+        Ok(cross(&self.dr, &self.ddr) / (n * n))
     }
 
     #[inline]
@@ -130,7 +148,7 @@ impl PlanarPoint {
         let n = self.stretch()?;
         let (a, b) = (&self.dr, &self.ddr);
         let t = a / n;
-        let g = 1.0 / (n * n * n);
+        let g = 1.0 / (n * n);
         Ok(Core {
             n,
             t,
@@ -138,7 +156,7 @@ impl PlanarPoint {
             c: cross(a, b),
             c_a: Vector2::new(b.y, -b.x),
             c_b: Vector2::new(-a.y, a.x),
-            g_a: t * (-3.0 * g / n),
+            g_a: t * (-2.0 * g / n),
         })
     }
 
@@ -159,8 +177,8 @@ impl PlanarPoint {
         let p = (Matrix2::identity() - t * t.transpose()) / n;
         eps_hess.fixed_view_mut::<2, 2>(0, 0).copy_from(&p);
 
-        // g_aa = -3 I / n^5 + 15 a a^T / n^7 = (g / n^2) (15 t t^T - 3 I).
-        let g_aa = (t * t.transpose() * 15.0 - Matrix2::identity() * 3.0) * (g / (n * n));
+        // g_aa = -2 I / n^4 + 8 a a^T / n^6 = (g / n^2) (8 t t^T - 2 I).
+        let g_aa = (t * t.transpose() * 8.0 - Matrix2::identity() * 2.0) * (g / (n * n));
         let k_aa = k.c_a * k.g_a.transpose() + k.g_a * k.c_a.transpose() + g_aa * c;
         // d^2 c / da db = [[0, 1], [-1, 0]] (rows r', columns r'').
         let c_ab = Matrix2::new(0.0, 1.0, -1.0, 0.0);

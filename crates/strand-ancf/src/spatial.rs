@@ -7,8 +7,14 @@
 //!
 //! ```text
 //! eps = |a| - 1                      axial strain (SPEC 3)
-//! k   = a x b / |a|^3                curvature vector, |k| the curvature, k . t = 0
+//! k   = a x b / |a|^2                curvature vector per reference length, k . t = 0
 //! ```
+//!
+//! `|k|` is the rotation of the tangent per unit *reference* length (1/m), the geometrically
+//! exact (Reissner) bending strain conjugate to the moment in eq. (28), not the paper's
+//! curvature per deformed length `a x b / |a|^3 = k / (1 + eps)`. With it the force conjugate
+//! to `eps` is the physical tension `EA eps = T` that the friction limits of the section law
+//! need; see [`crate::planar`] for the derivation and the measured consequence.
 //!
 //! # Section frame
 //!
@@ -26,7 +32,7 @@
 //! functions
 //!
 //! ```text
-//! kappa_e = [ (a x b) . e0 - (e0 . a) ((a x b) . t0) / (|a| + t0 . a) ] / |a|^3,
+//! kappa_e = [ (a x b) . e0 - (e0 . a) ((a x b) . t0) / (|a| + t0 . a) ] / |a|^2,
 //! ```
 //!
 //! linear in `b`. Their gradients and Hessians with respect to `y = (a, b)` (6 values,
@@ -147,7 +153,7 @@ pub struct SpatialFirst {
     pub eps: f64,
     /// Curvature vector in the section frame `(kappa_y, kappa_z) = (k . e_y, k . e_z)` (1/m).
     pub kappa: [f64; 2],
-    /// Global curvature vector `k = r' x r'' / |r'|^3` (1/m).
+    /// Global curvature vector per reference length `k = r' x r'' / |r'|^2` (1/m).
     pub curvature: Vector3<f64>,
     /// Unit tangent `t = r' / |r'|`.
     pub tangent: Vector3<f64>,
@@ -174,9 +180,9 @@ pub struct SpatialSecond {
 struct Shared {
     n: f64,
     t: Vector3<f64>,
-    /// `1 / n^3`.
+    /// `1 / n^2`.
     g: f64,
-    /// `d g / da = -3 t g / n`.
+    /// `d g / da = -2 t g / n`.
     g_a: Vector3<f64>,
     /// `a x b`.
     w: Vector3<f64>,
@@ -232,11 +238,12 @@ impl SpatialPoint {
         Ok(self.stretch()? - 1.0)
     }
 
-    /// Global curvature vector `k = r' x r'' / |r'|^3`; its norm is the curvature.
+    /// Global curvature vector per reference length `k = r' x r'' / |r'|^2`; its norm is the
+    /// curvature (1/m).
     #[inline]
     pub fn curvature_vector(&self) -> Result<Vector3<f64>, AncfError> {
         let n = self.stretch()?;
-        Ok(self.dr.cross(&self.ddr) / (n * n * n))
+        Ok(self.dr.cross(&self.ddr) / (n * n))
     }
 
     /// Curvature components `(kappa_y, kappa_z)` in the section frame carried from `frame`.
@@ -252,13 +259,13 @@ impl SpatialPoint {
         let (a, b, u) = (&self.dr, &self.ddr, &frame.t0);
         let t = a / n;
         let alignment = check_alignment(1.0 + u.dot(&t))?;
-        let g = 1.0 / (n * n * n);
+        let g = 1.0 / (n * n);
         let w = a.cross(b);
         Ok(Shared {
             n,
             t,
             g,
-            g_a: t * (-3.0 * g / n),
+            g_a: t * (-2.0 * g / n),
             w,
             d: n * alignment,
             d_a: t + u,
@@ -334,8 +341,8 @@ impl SpatialPoint {
         let mut eps_hess = Matrix6::zeros();
         eps_hess.fixed_view_mut::<3, 3>(0, 0).copy_from(&d_aa);
 
-        // g_aa = -3 I / n^5 + 15 a a^T / n^7.
-        let g_aa = (tt * 15.0 - id * 3.0) * (s.g / (s.n * s.n));
+        // g_aa = -2 I / n^4 + 8 a a^T / n^6.
+        let g_aa = (tt * 8.0 - id * 2.0) * (s.g / (s.n * s.n));
         // d^2 c_u / da db = -[t0]x (rows a, columns b).
         let cu_ab = -frame.t0.cross_matrix();
         let hess = |c: &Component, e0: &Vector3<f64>| {

@@ -79,7 +79,8 @@ fn near_straight_derivatives_are_finite_and_correct() {
             let y = Vector4::new(n * t.x, n * t.y, b.x, b.y);
             let s = point(&y).second().unwrap();
             // The tangential part of r'' cancels in r' x r'' only up to rounding (~1e-16).
-            assert!((s.first.kappa - bend / (n * n)).abs() < 1e-15);
+            // r' x r'' = n bend; per reference length kappa = n bend / n^2.
+            assert!((s.first.kappa - bend / n).abs() < 1e-15);
             assert!(s.kappa_hess.iter().all(|v| v.is_finite()));
             assert!(s.first.kappa_grad.iter().all(|v| v.is_finite()));
             let e = local_fd_errors(&y);
@@ -93,6 +94,28 @@ fn near_straight_derivatives_are_finite_and_correct() {
         worst[0], worst[1], worst[2], worst[3]
     );
     assert!(worst.iter().all(|&e| e < 1e-6), "{worst:?}");
+}
+
+/// The curvature is per reference length (the Reissner measure): on a circle of radius R
+/// stretched uniformly by `lambda`, `r(x) = R (cos(lambda x / R), sin(lambda x / R))`, the
+/// tangent turns by `lambda / R` per unit material length, while the curvature per deformed
+/// length stays `1 / R`. The axial strain is `lambda - 1`.
+#[test]
+fn curvature_is_per_reference_length() {
+    let r = 0.35;
+    for &lambda in &[0.8, 1.0, 1.003, 1.5] {
+        for &th in &[0.0, 0.7, -2.5] {
+            let t = Vector2::new(f64::cos(th), f64::sin(th));
+            let nrm = Vector2::new(-t.y, t.x);
+            for sign in [1.0, -1.0] {
+                let a = t * lambda;
+                let b = nrm * (sign * lambda * lambda / r);
+                let f = point(&Vector4::new(a.x, a.y, b.x, b.y)).first().unwrap();
+                assert!((f.kappa - sign * lambda / r).abs() < 1e-13, "{}", f.kappa);
+                assert!((f.eps - (lambda - 1.0)).abs() < 1e-15);
+            }
+        }
+    }
 }
 
 fn element_values(q: &PlanarCoords, row: &ShapeRow) -> (f64, f64) {

@@ -134,7 +134,8 @@ fn near_straight_derivatives_are_finite_and_correct() {
             let y = Vector6::new(a.x, a.y, a.z, b.x, b.y, b.z);
             let s = point(&y).second(&frame).unwrap();
             let k = s.first.kappa;
-            assert!((k[0].hypot(k[1]) - bend / (n * n)).abs() < 1e-15);
+            // |r' x r''| = n bend; per reference length |k| = n bend / n^2.
+            assert!((k[0].hypot(k[1]) - bend / n).abs() < 1e-15);
             assert!(s.kappa_hess.iter().all(|h| h.iter().all(|v| v.is_finite())));
             let e = local_fd_errors(&y, &frame);
             for i in 0..6 {
@@ -281,6 +282,33 @@ fn helix(rho: f64, h: f64, s: f64) -> (Vector3<f64>, Vector3<f64>) {
         Vector3::new(rho * th.cos(), rho * th.sin(), h * th),
         Vector3::new(-rho * th.sin(), rho * th.cos(), h) / c,
     )
+}
+
+/// The curvature vector is per reference length: a helix of radius rho and lead 2 pi h
+/// traversed with uniform stretch lambda (`r(lambda s)`, `s` the arc length of the helix)
+/// turns its tangent by `lambda rho / (rho^2 + h^2)` per unit material length, while the
+/// curvature per deformed length stays `rho / (rho^2 + h^2)`.
+#[test]
+fn curvature_is_per_reference_length() {
+    let (rho, h): (f64, f64) = (0.3, 0.1);
+    let c = (rho * rho + h * h).sqrt();
+    let frame = x_frame();
+    for &lambda in &[0.8, 1.0, 1.003, 1.5] {
+        for &s in &[0.2f64, 1.1] {
+            let th = s / c;
+            let tangent = Vector3::new(-rho * th.sin(), rho * th.cos(), h) / c;
+            let normal = Vector3::new(-th.cos(), -th.sin(), 0.0);
+            let kdef = rho / (c * c);
+            let a = tangent * lambda;
+            let b = normal * (lambda * lambda * kdef);
+            let f = point(&Vector6::new(a.x, a.y, a.z, b.x, b.y, b.z))
+                .first(&frame)
+                .unwrap();
+            let k = f.kappa[0].hypot(f.kappa[1]);
+            assert!((k - lambda * kdef).abs() < 1e-13, "{k}");
+            assert!((f.curvature.norm() - lambda * kdef).abs() < 1e-13);
+        }
+    }
 }
 
 fn helix_error(rho: f64, h: f64, l: f64) -> [f64; 2] {

@@ -17,7 +17,7 @@
 //! parallel to the curvature (the planar law applied in the plane of bending).
 //!
 //! A planar scene moves in the global XY plane with z = global Z; the signed planar curvature
-//! `kappa = (r' x r'')_Z / |r'|^3` is `kappa_z`. Bending with the convex side toward +y
+//! `kappa = (r' x r'')_Z / |r'|^2` (per reference length) is `kappa_z`. Bending with the convex side toward +y
 //! (curvature centre toward -y, `kappa_z < 0`, the paper's hanging cantilever) uses the phases
 //! of eq. (36) as they are; bending the other way mirrors them, phi -> -phi (SPEC 2).
 //!

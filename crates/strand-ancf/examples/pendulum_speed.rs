@@ -1,0 +1,163 @@
+//! Solve time of the paper's section-3 pendulum (scene `validation/paper-fig14-pendulum.json`:
+//! L = 1 m, E = 2e9 Pa, rho = 5747 kg/m^3, 30 planar elements, pinned at x = 0, gravity 9.8
+//! m/s^2, 1 s) for each integrator and law, with the tip error against a converged run
+//! (generalized-alpha at 1e-4 s, no numerical damping).
+//!
+//! ```text
+//! cargo run --release -p strand-ancf --example pendulum_speed [-- LAW...]
+//! ```
+//!
+//! LAW is `constant`, `continuous` or `hysteretic` (default: constant and hysteretic). Only
+//! the solve is timed (`run_dynamic`, after the beam is built); each configuration runs
+//! `REPEAT` times and the fastest is reported.
+
+use std::time::Instant;
+
+use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support};
+use strand_ancf::dynamics::{DynamicOptions, DynamicSummary, Scheme, run_dynamic};
+use strand_core::{LawKind, SectionLaw, Strand, StrandSpec};
+
+const REPEAT: usize = 3;
+const DURATION: f64 = 1.0;
+/// Spectral radius of the scenes' default generalized-alpha.
+const RHO: f64 = 0.9;
+
+/// The pendulum with `points` Gauss points per element for bending (`None`: the pitch rule).
+fn beam(kind: LawKind, points: Option<usize>) -> Beam {
+    let s = Strand::new(StrandSpec::paper(1.0, 2.0e9, 5747.0)).unwrap();
+    Beam::new(
+        BeamSpec {
+            elements: 30,
+            bending_points: points,
+            mass_per_length: s.mass_per_length(),
+            element: ElementKind::Planar,
+            direction: [1.0, 0.0, 0.0],
+            gravity: [0.0, -9.8, 0.0],
+            start: Some(Support::Pinned),
+            end: None,
+        },
+        SectionLaw::new(&s, kind),
+    )
+    .unwrap()
+}
+
+fn tip(beam: &Beam, q: &[f64]) -> [f64; 2] {
+    let (p, _) = beam.sample(q, beam.length());
+    [p[0], p[1]]
+}
+
+/// Fastest of `repeat` runs: (summary, seconds, largest tip distance to `reference` over the
+/// output frames every 10 ms that fall on the same times, always including the end, t = 1 s).
+fn timed(
+    beam: &Beam,
+    scheme: Scheme,
+    repeat: usize,
+    reference: Option<&[[f64; 2]]>,
+) -> (DynamicSummary, f64, f64, Vec<[f64; 2]>) {
+    let mut best = f64::INFINITY;
+    let mut out = None;
+    for _ in 0..repeat {
+        let mut opts = DynamicOptions::new(DURATION, scheme, 0.01);
+        if let Ok(v) = std::env::var("PENDULUM_REFRESH") {
+            opts.refresh = v.parse().expect("PENDULUM_REFRESH is a number");
+        }
+        if let Ok(v) = std::env::var("PENDULUM_INCREMENT") {
+            opts.increment = v.parse().expect("PENDULUM_INCREMENT is a number");
+        }
+        let mut tips = Vec::new();
+        let start = Instant::now();
+        let s = run_dynamic(beam, &opts, &mut |f| {
+            // Frames off the 10 ms grid (a step that does not divide it) are marked NaN.
+            let on_grid = ((f.t / 0.01).round() * 0.01 - f.t).abs() < 1e-9;
+            tips.push(if on_grid {
+                tip(beam, f.q)
+            } else {
+                [f64::NAN; 2]
+            });
+        })
+        .unwrap();
+        let dt = start.elapsed().as_secs_f64();
+        if dt < best {
+            best = dt;
+        }
+        out = Some((s, tips));
+    }
+    let (s, tips) = out.unwrap();
+    let err = reference.map_or(0.0, |r| {
+        r.iter()
+            .zip(&tips)
+            .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
+            .filter(|d| d.is_finite())
+            .fold(0.0, f64::max)
+            .max({
+                let (a, b) = (r.last().unwrap(), tips.last().unwrap());
+                (a[0] - b[0]).hypot(a[1] - b[1])
+            })
+    });
+    (s, best, err, tips)
+}
+
+fn report(name: &str, s: &DynamicSummary, secs: f64, err: f64) {
+    println!(
+        "{name:<34} {:>9.2} ms {:>6} steps {:>7} iter {:>6} fact  RTF {:>7.1}  tip err {:.2e} m  \
+         balance {:.1e} J",
+        1e3 * secs,
+        s.steps,
+        s.newton_iterations,
+        s.factorizations,
+        DURATION / secs,
+        err,
+        s.balance_error
+    );
+}
+
+fn main() {
+    let laws: Vec<String> = std::env::args().skip(1).collect();
+    let laws = if laws.is_empty() {
+        vec!["constant".to_string(), "hysteretic".to_string()]
+    } else {
+        laws
+    };
+    for law in laws {
+        let kind = match law.as_str() {
+            "constant" => LawKind::Constant,
+            "continuous" => LawKind::Continuous,
+            "hysteretic" => LawKind::Hysteretic,
+            other => panic!("unknown law {other}"),
+        };
+        // PENDULUM_POINTS=N: N Gauss points per element for bending instead of the pitch rule.
+        let points = std::env::var("PENDULUM_POINTS")
+            .ok()
+            .map(|v| v.parse().expect("PENDULUM_POINTS is a count"));
+        let b = beam(kind, points);
+        println!(
+            "law {law}: {} dofs, {} bending points",
+            b.dofs(),
+            b.points()
+        );
+        let alpha = |step: f64, rho: f64| Scheme::GeneralizedAlpha {
+            step,
+            spectral_radius: rho,
+        };
+        // PENDULUM_ONLY=STEP: one generalized-alpha run of that step, untimed against a
+        // reference (for profiling).
+        if let Ok(only) = std::env::var("PENDULUM_ONLY") {
+            let step: f64 = only.parse().expect("PENDULUM_ONLY is a step in seconds");
+            let (s, t, e, _) = timed(&b, alpha(step, RHO), 1, None);
+            report(&format!("gen-alpha {step:.1e} s rho {RHO}"), &s, t, e);
+            continue;
+        }
+        // The reference always uses the default quadrature.
+        let reference_beam = beam(kind, None);
+        let (rs, rt, _, reference) = timed(&reference_beam, alpha(1e-4, 1.0), 1, None);
+        report("gen-alpha 1e-4 s rho 1 (reference)", &rs, rt, 0.0);
+        let r = Some(reference.as_slice());
+        let (s, t, e, _) = timed(&b, Scheme::Verlet { step: None }, 1, r);
+        report(&format!("verlet {:.2e} s", s.time_step), &s, t, e);
+        // Steps that divide the 10 ms output interval, so that frames fall on the same times.
+        for step in [1e-3, 2e-3, 2.5e-3, 5e-3, 1e-2] {
+            let (s, t, e, _) = timed(&b, alpha(step, RHO), REPEAT, r);
+            report(&format!("gen-alpha {step:.1e} s rho {RHO}"), &s, t, e);
+        }
+    }
+}
