@@ -5,6 +5,7 @@ use std::process::Command;
 use anyhow::{Context, bail};
 use clap::{Parser, Subcommand};
 
+mod hard;
 mod validate;
 
 #[derive(Parser)]
@@ -22,13 +23,33 @@ enum Task {
     /// Runs the validation scenes and their checks (validation/tolerances.json), prints the
     /// table, writes target/validation/report.{md,json}; fails on any failed check.
     Validate(validate::ValidateArgs),
+    /// Runs the hard cases of SPEC 10 (validation/hard/, criteria in
+    /// validation/hard/criteria.json), prints the table, writes target/hard/report.{md,json};
+    /// fails on any failed criterion.
+    Hard(hard::HardArgs),
 }
 
 fn main() -> anyhow::Result<()> {
     match Cli::parse().task {
         Task::Check => check(),
         Task::Validate(args) => validate_and_exit(&args),
+        Task::Hard(args) => hard_and_exit(&args),
     }
+}
+
+/// Runs the hard cases, prints the table and exits with status 1 when a criterion failed.
+fn hard_and_exit(args: &hard::HardArgs) -> anyhow::Result<()> {
+    let report = hard::run(args)?;
+    print!("{}", report.table());
+    if report.failed() {
+        let names: Vec<String> = report
+            .failures()
+            .map(|r| format!("{} {}", r.scene, r.check))
+            .collect();
+        eprintln!("hard cases failed: {}", names.join("; "));
+        std::process::exit(1);
+    }
+    Ok(())
 }
 
 /// Runs the validation, prints the table and exits with status 1 when a check failed.

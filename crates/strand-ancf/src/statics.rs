@@ -7,6 +7,8 @@
 //! `hysteretic` law's slip state is committed after every converged step, so the static path
 //! follows the load steps.
 
+use strand_core::LawKind;
+
 use crate::band::{BandMatrix, BandSolver};
 use crate::beam::{Beam, BeamError, PointState};
 
@@ -168,11 +170,19 @@ pub fn solve_static(
                 cuts += 1;
                 step *= 0.5;
                 if step < opts.min_step {
+                    let law = beam.law().kind();
+                    let why = if law == LawKind::Paper {
+                        "; the `paper` law is non-monotone (the moment drops when a wire starts \
+                         to slip, eq. (23)), so an equilibrium beyond the drop may not exist; \
+                         the `continuous` law is its monotone counterpart"
+                    } else {
+                        ""
+                    };
                     return Err(StaticError::Stalled {
                         reached: lambda,
                         min_step: opts.min_step,
-                        law: beam.law().kind().name(),
-                        detail: format!(": {detail}"),
+                        law: law.name(),
+                        detail: format!(": {detail}{why}"),
                     });
                 }
             }
@@ -219,12 +229,36 @@ fn residual(
     if r.is_finite() {
         Ok(r)
     } else {
+        let i = w.r.iter().position(|v| !v.is_finite()).unwrap_or(0);
+        let (element, x) = locate(beam, i);
         Err(BeamError::NonFinite {
-            element: 0,
-            x: f64::NAN,
+            element,
+            x,
             quantity: "residual",
         })
     }
+}
+
+/// The element (0-based) and material coordinate (m) of the node that free coordinate `i`
+/// belongs to (the last element holds the end node).
+fn locate(beam: &Beam, i: usize) -> (usize, f64) {
+    let g = (0..beam.coords())
+        .find(|&g| beam.free_index(g) == Some(i))
+        .unwrap_or(0);
+    let node = g / beam.node_coords();
+    (
+        node.min(beam.spec().elements - 1),
+        node as f64 * beam.element_length(),
+    )
+}
+
+/// `: the residual is largest at x = ... m (element e)`, where Newton left it.
+fn largest_residual(beam: &Beam, r: &[f64]) -> String {
+    let i = (0..r.len())
+        .max_by(|&a, &b| r[a].abs().total_cmp(&r[b].abs()))
+        .unwrap_or(0);
+    let (element, x) = locate(beam, i);
+    format!("; the residual is largest at x = {x:.4} m (node of element {element})")
 }
 
 /// Newton iterations at load fraction `lambda` from `w.q_try`; Ok(iterations, relative
@@ -291,9 +325,10 @@ fn newton(
         Err((
             opts.max_iterations,
             format!(
-                "Newton left a residual of {:.3e} of the load after {} iterations",
+                "Newton left a residual of {:.3e} of the load after {} iterations{}",
                 r0 / load_norm,
-                opts.max_iterations
+                opts.max_iterations,
+                largest_residual(beam, &w.r)
             ),
         ))
     }

@@ -9,7 +9,9 @@ mod run;
 mod run_fine;
 mod scene;
 
-pub use run::{RunError, RunOptions, RunSummary, run_scene};
+pub use run::{
+    BeamModelKind, RunError, RunOptions, RunSummary, build_beam, dynamic_options, run_scene,
+};
 pub use scene::{
     Analysis, BeamModel, Dynamic, End, FineModel, IntegratorKind, MEMORY_LIMIT, Models, Scene,
     SceneError, Support, SupportKind,

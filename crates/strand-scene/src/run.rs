@@ -13,6 +13,10 @@ use strand_core::{LawKind, SectionLaw, WireState};
 use crate::output::{Csv, number, write_vtk_polyline};
 use crate::scene::{Analysis, BeamModel, End, IntegratorKind, Scene, SupportKind};
 
+/// Energy balance error, relative to the largest kinetic energy, above which a dynamic run
+/// warns that its result is not to be trusted.
+pub const BALANCE_WARNING: f64 = 0.05;
+
 /// Options of a run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunOptions {
@@ -146,19 +150,58 @@ fn beam_support(scene: &Scene, end: End) -> Option<BeamSupport> {
         })
 }
 
-fn run_beam(
-    scene: &Scene,
-    name: &str,
-    model: &BeamModel,
-    kind: LawKind,
-    opts: &RunOptions,
-    progress: &mut dyn FnMut(&str, f64),
-) -> Result<RunSummary, RunError> {
-    let strand = &scene.strand;
-    let setup = |message: String| RunError::Setup {
-        model: name.to_string(),
-        message,
+/// A beam model of a scene: the equivalent beam with the scene's law, or the traditional one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BeamModelKind {
+    /// `models.equivalent`.
+    Equivalent,
+    /// `models.traditional` (the `constant` law).
+    Traditional,
+}
+
+impl BeamModelKind {
+    /// The model's name in scenes and result folders.
+    pub fn name(self) -> &'static str {
+        match self {
+            BeamModelKind::Equivalent => "equivalent",
+            BeamModelKind::Traditional => "traditional",
+        }
+    }
+}
+
+/// The beam `run_scene` builds for `which` model of `scene` (supports, element kind, law,
+/// mass), for callers that need the strand-ancf API directly (e.g. stability studies).
+pub fn build_beam(scene: &Scene, which: BeamModelKind) -> Result<Beam, RunError> {
+    let (model, kind) = match which {
+        BeamModelKind::Equivalent => (scene.models.equivalent.as_ref(), scene.law),
+        BeamModelKind::Traditional => (scene.models.traditional.as_ref(), LawKind::Constant),
     };
+    let model = model.ok_or_else(|| RunError::Setup {
+        model: which.name().into(),
+        message: "the scene does not name this model".into(),
+    })?;
+    beam_of(scene, which.name(), model, kind)
+}
+
+/// The dynamic options `run_scene` uses for `scene`; `None` for a static analysis.
+pub fn dynamic_options(scene: &Scene) -> Option<DynamicOptions> {
+    let Analysis::Dynamic(dy) = scene.analysis else {
+        return None;
+    };
+    let scheme = match dy.integrator {
+        IntegratorKind::Verlet => Scheme::Verlet { step: dy.time_step },
+        IntegratorKind::GeneralizedAlpha => Scheme::GeneralizedAlpha {
+            step: dy
+                .time_step
+                .expect("validated: generalized-alpha has a step"),
+            spectral_radius: dy.spectral_radius,
+        },
+    };
+    Some(DynamicOptions::new(dy.duration, scheme, dy.output_interval))
+}
+
+fn beam_of(scene: &Scene, name: &str, model: &BeamModel, kind: LawKind) -> Result<Beam, RunError> {
+    let strand = &scene.strand;
     let law = SectionLaw::new(strand, kind);
     let mass = model.mass_per_length.unwrap_or(strand.mass_per_length());
     let spec = BeamSpec {
@@ -175,7 +218,22 @@ fn run_beam(
         start: beam_support(scene, End::Start),
         end: beam_support(scene, End::End),
     };
-    let beam = Beam::new(spec, law.clone()).map_err(|e| setup(e.to_string()))?;
+    Beam::new(spec, law).map_err(|e| RunError::Setup {
+        model: name.to_string(),
+        message: e.to_string(),
+    })
+}
+
+fn run_beam(
+    scene: &Scene,
+    name: &str,
+    model: &BeamModel,
+    kind: LawKind,
+    opts: &RunOptions,
+    progress: &mut dyn FnMut(&str, f64),
+) -> Result<RunSummary, RunError> {
+    let beam = beam_of(scene, name, model, kind)?;
+    let law = beam.law();
     let dir = opts.out.join(name);
     std::fs::create_dir_all(&dir).map_err(io_err(&dir))?;
     let mut built = vec![
@@ -229,7 +287,7 @@ fn run_beam(
                 progress(name, f)
             })
         }
-        Analysis::Dynamic(dy) => {
+        Analysis::Dynamic(_) => {
             summary.analysis = "dynamic".into();
             if matches!(kind, LawKind::Continuous | LawKind::Paper) {
                 summary.warnings.push(format!(
@@ -238,16 +296,7 @@ fn run_beam(
                      vibrations; `hysteretic` is the energetically consistent law"
                 ));
             }
-            let scheme = match dy.integrator {
-                IntegratorKind::Verlet => Scheme::Verlet { step: dy.time_step },
-                IntegratorKind::GeneralizedAlpha => Scheme::GeneralizedAlpha {
-                    step: dy
-                        .time_step
-                        .expect("validated: generalized-alpha has a step"),
-                    spectral_radius: dy.spectral_radius,
-                },
-            };
-            let o = DynamicOptions::new(dy.duration, scheme, dy.output_interval);
+            let o = dynamic_options(scene).expect("a dynamic analysis");
             run_dynamics(&beam, &o, &dir, opts.vtk, &mut summary, &mut |f| {
                 progress(name, f)
             })
@@ -464,5 +513,14 @@ fn run_dynamics(
     summary.energy_balance_error = Some(s.balance_error);
     summary.energy_balance_relative = Some(s.balance_error / s.max_kinetic.max(f64::MIN_POSITIVE));
     summary.dissipated = Some(s.last.dissipated);
+    let relative = s.balance_error / s.max_kinetic.max(f64::MIN_POSITIVE);
+    if relative > BALANCE_WARNING {
+        summary.warnings.push(format!(
+            "energy balance not closed: the error {:.3e} J is {relative:.2e} of the largest \
+             kinetic energy; the time step {:.3e} s is too coarse for this motion (with the \
+             stick/slip laws Newton may end steps on a stick/slip cycle): reduce it",
+            s.balance_error, s.time_step
+        ));
+    }
     write_state(beam, &s.q, &s.slip, &last_points, dir)
 }

@@ -179,6 +179,12 @@ pub struct Counts {
 /// The whole validation result.
 #[derive(Debug, Clone, Serialize)]
 pub struct Report {
+    /// Title of `report.md`.
+    pub title: String,
+    /// Heading of the first column (what a row belongs to).
+    pub label: String,
+    /// The file the limits and their reasons come from.
+    pub limits_file: String,
     /// Machine, commit, build profile and command.
     pub provenance: Provenance,
     /// Whether this was the `--quick` subset.
@@ -203,12 +209,23 @@ impl Report {
             }
         }
         Report {
+            title: "Validation report".into(),
+            label: "scene".into(),
+            limits_file: "validation/tolerances.json".into(),
             provenance,
             quick,
             wall_time_s,
             counts,
             rows,
         }
+    }
+
+    /// The same report with another title, first-column heading and limits file.
+    pub fn titled(mut self, title: &str, label: &str, limits_file: &str) -> Report {
+        self.title = title.into();
+        self.label = label.into();
+        self.limits_file = limits_file.into();
+        self
     }
 
     /// Whether any row failed.
@@ -223,7 +240,7 @@ impl Report {
 
     /// The table as aligned plain text.
     pub fn table(&self) -> String {
-        let head = ["scene", "check", "value", "tolerance", "result"];
+        let head = [self.label.as_str(), "check", "value", "tolerance", "result"];
         let cells: Vec<[String; 5]> = self
             .rows
             .iter()
@@ -298,14 +315,18 @@ impl Report {
     /// The report as Markdown.
     pub fn markdown(&self) -> String {
         let p = &self.provenance;
-        let mut s = String::from("# Validation report\n\n");
+        let mut s = format!("# {}\n\n", self.title);
         let _ = writeln!(s, "* command: `{}`", p.command);
         let _ = writeln!(s, "* commit: `{}`", p.commit);
         let _ = writeln!(s, "* date: {}", p.date);
         let _ = writeln!(s, "* build profile: {}", p.profile);
         let _ = writeln!(s, "* machine: {}", p.machine.description());
         let _ = writeln!(s, "* result: {}\n", self.summary_line());
-        s.push_str("| scene | check | value | tolerance | result |\n|---|---|---:|---:|---|\n");
+        let _ = writeln!(
+            s,
+            "| {} | check | value | tolerance | result |\n|---|---|---:|---:|---|",
+            self.label
+        );
         for r in &self.rows {
             let _ = writeln!(
                 s,
@@ -324,7 +345,7 @@ impl Report {
                 let _ = writeln!(s, "* {n}");
             }
         }
-        s.push_str("\nWhy these tolerances (`validation/tolerances.json`):\n\n");
+        let _ = writeln!(s, "\nWhy these tolerances (`{}`):\n", self.limits_file);
         let mut seen: Vec<(&str, &str)> = Vec::new();
         for r in self.rows.iter().filter(|r| !r.why.is_empty()) {
             if !seen.contains(&(&r.scene, &r.check)) {
