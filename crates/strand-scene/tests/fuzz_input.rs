@@ -108,3 +108,64 @@ proptest! {
         check(&noise)?;
     }
 }
+
+/// A strand value: typical, scaled by up to 1e4 either way, or one of the hostile values.
+fn strand_value(typical: f64) -> impl Strategy<Value = f64> {
+    prop_oneof![
+        8 => (-4.0f64..4.0).prop_map(move |e| typical * 10f64.powf(e)),
+        1 => Just(f64::NAN),
+        1 => Just(f64::INFINITY),
+        1 => Just(-typical),
+        1 => Just(0.0),
+        1 => Just(f64::MAX),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Random strand parameters (NaN and infinity included, which JSON cannot carry) through
+    /// the validation and the runner's set-up: a rejection names the JSON path; an accepted
+    /// scene builds a beam whose stable step and forces at rest are finite, or the set-up
+    /// refuses it with an error. Never a panic.
+    #[test]
+    fn random_strands_through_the_runner_setup(
+        length in strand_value(0.4),
+        core in (strand_value(3e-3), strand_value(2e8), strand_value(7801.0)),
+        layer in (strand_value(2e-3), strand_value(2e8), strand_value(7801.0), strand_value(20.0)),
+        wires in -1i64..12,
+        friction in strand_value(0.3),
+        elements in 0i64..40,
+    ) {
+        let mut f: strand_scene::format::SceneFile = serde_json::from_value(good()).unwrap();
+        f.strand.length = length;
+        (f.strand.core.diameter, f.strand.core.youngs_modulus, f.strand.core.density) = core;
+        let l = &mut f.strand.layers[0];
+        (l.diameter, l.youngs_modulus, l.density) = (layer.0, layer.1, layer.2);
+        l.lay_angle_deg = Some(layer.3);
+        l.wires = wires;
+        f.strand.friction = Some(friction);
+        f.models.equivalent.as_mut().unwrap().elements = elements;
+        f.models.traditional = None;
+        match Scene::from_file(f) {
+            Err(e) => prop_assert!(!e.path.is_empty() && !e.message.is_empty(), "{e}"),
+            Ok(scene) => {
+                if let Ok(beam) =
+                    strand_scene::build_beam(&scene, strand_scene::BeamModelKind::Equivalent)
+                {
+                    let h = strand_ancf::dynamics::stable_step(&beam);
+                    prop_assert!(h.as_ref().map_or(true, |h| h.is_finite() && *h > 0.0), "{h:?}");
+                    let slip = vec![0.0; beam.state_len()];
+                    let mut trial = slip.clone();
+                    let mut force = vec![0.0; beam.coords()];
+                    if beam
+                        .internal(beam.reference(), &slip, &mut trial, &mut force, None, None)
+                        .is_ok()
+                    {
+                        prop_assert!(force.iter().all(|x| x.is_finite()));
+                    }
+                }
+            }
+        }
+    }
+}

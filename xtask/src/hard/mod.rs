@@ -186,7 +186,7 @@ pub fn run(args: &HardArgs) -> anyhow::Result<Report> {
         ctx.progress("", 0.0);
         let t = Instant::now();
         let r = run_case(&ctx, *case);
-        bar.println(format!(
+        let line = format!(
             "{:<26} {:>7.1} s  {}",
             name,
             t.elapsed().as_secs_f64(),
@@ -197,7 +197,13 @@ pub fn run(args: &HardArgs) -> anyhow::Result<Report> {
             } else {
                 "pass"
             }
-        ));
+        );
+        // Without a terminal the bar is hidden, and so is its println: print the line itself.
+        if bar.is_hidden() {
+            eprintln!("{line}");
+        } else {
+            bar.println(line);
+        }
         rows.extend(r);
     }
     bar.finish_and_clear();
