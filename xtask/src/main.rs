@@ -6,6 +6,7 @@ use anyhow::{Context, bail};
 use clap::{Parser, Subcommand};
 
 mod hard;
+mod plot;
 mod validate;
 
 #[derive(Parser)]

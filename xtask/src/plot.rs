@@ -1,0 +1,345 @@
+//! Charts for the reports: line and point series on linear or log-log axes, written as PNG and
+//! SVG with an embedded font (DejaVu Sans), so text renders on a machine without system fonts.
+
+use std::path::{Path, PathBuf};
+use std::sync::Once;
+
+use anyhow::{Context, anyhow};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::{FontStyle, register_font};
+
+/// Pixel size of every chart.
+const SIZE: (u32, u32) = (900, 560);
+
+/// How a series is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mark {
+    /// Solid line.
+    Line,
+    /// Dashed line.
+    Dashed,
+    /// Filled circles.
+    Points,
+    /// Hollow circles.
+    Rings,
+    /// Solid line with large hollow circles at the points (a Pareto front).
+    Front,
+}
+
+/// One curve or point set of a chart.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    /// Legend entry; empty for none.
+    pub label: String,
+    /// (x, y) in the chart's units.
+    pub points: Vec<(f64, f64)>,
+    /// How to draw it.
+    pub mark: Mark,
+    /// Index into the palette.
+    pub color: usize,
+}
+
+impl Series {
+    /// A series from points.
+    pub fn new(label: impl Into<String>, points: Vec<(f64, f64)>, mark: Mark, color: usize) -> Self {
+        Series {
+            label: label.into(),
+            points,
+            mark,
+            color,
+        }
+    }
+
+    /// A series from separate x and y columns.
+    pub fn xy(label: impl Into<String>, x: &[f64], y: &[f64], mark: Mark, color: usize) -> Self {
+        Series::new(
+            label,
+            x.iter().copied().zip(y.iter().copied()).collect(),
+            mark,
+            color,
+        )
+    }
+}
+
+/// A chart: title, axis labels, series, and an optional note printed under the title.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Chart {
+    /// Title.
+    pub title: String,
+    /// Label of the x axis, with its unit.
+    pub x_label: String,
+    /// Label of the y axis, with its unit.
+    pub y_label: String,
+    /// The series, drawn in order.
+    pub series: Vec<Series>,
+    /// Log-log axes (non-positive values are left out).
+    pub log: bool,
+    /// Same scale on both axes (shapes).
+    pub equal_aspect: bool,
+    /// A line of text inside the plot area, e.g. what is not available.
+    pub note: Option<String>,
+}
+
+/// The palette: colour-blind-safe (Okabe-Ito) plus black.
+pub fn color(i: usize) -> RGBColor {
+    const C: [RGBColor; 8] = [
+        RGBColor(0, 114, 178),
+        RGBColor(213, 94, 0),
+        RGBColor(0, 158, 115),
+        RGBColor(204, 121, 167),
+        RGBColor(230, 159, 0),
+        RGBColor(86, 180, 233),
+        RGBColor(0, 0, 0),
+        RGBColor(240, 228, 66),
+    ];
+    C[i % C.len()]
+}
+
+/// Registers the embedded DejaVu Sans as plotters' `sans-serif` (once per process).
+pub fn register_fonts() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
+            .unwrap_or_else(|_| panic!("the embedded DejaVu Sans is a valid font"));
+    });
+}
+
+/// Writes `chart` as `dir/stem.png` and `dir/stem.svg`; returns both paths.
+pub fn save(chart: &Chart, dir: &Path, stem: &str) -> anyhow::Result<Vec<PathBuf>> {
+    register_fonts();
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let png = dir.join(format!("{stem}.png"));
+    let svg = dir.join(format!("{stem}.svg"));
+    {
+        let root = BitMapBackend::new(&png, SIZE).into_drawing_area();
+        render(&root, chart).with_context(|| format!("drawing {}", png.display()))?;
+        root.present()
+            .map_err(|e| anyhow!("{e:?}"))
+            .with_context(|| format!("writing {}", png.display()))?;
+    }
+    {
+        let root = SVGBackend::new(&svg, SIZE).into_drawing_area();
+        render(&root, chart).with_context(|| format!("drawing {}", svg.display()))?;
+        root.present()
+            .map_err(|e| anyhow!("{e:?}"))
+            .with_context(|| format!("writing {}", svg.display()))?;
+    }
+    Ok(vec![png, svg])
+}
+
+/// The range of the finite values (positive ones only for log axes), padded by 5 %
+/// (a factor on log axes); `(0, 1)` when there are none.
+pub fn range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in values.filter(|v| v.is_finite() && (!log || *v > 0.0)) {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    if lo > hi {
+        return if log { (0.1, 10.0) } else { (0.0, 1.0) };
+    }
+    if log {
+        let f = (hi / lo).powf(0.05).max(1.2);
+        (lo / f, hi * f)
+    } else {
+        let pad = if hi > lo {
+            0.05 * (hi - lo)
+        } else {
+            0.05 * hi.abs().max(1e-12)
+        };
+        (lo - pad, hi + pad)
+    }
+}
+
+/// Widens the shorter range so that one unit has the same length on both axes of a plot area
+/// of `width` x `height` pixels.
+fn equalize(x: (f64, f64), y: (f64, f64), width: f64, height: f64) -> ((f64, f64), (f64, f64)) {
+    let (sx, sy) = ((x.1 - x.0) / width, (y.1 - y.0) / height);
+    if sx > sy {
+        let c = 0.5 * (y.0 + y.1);
+        let h = 0.5 * sx * height;
+        (x, (c - h, c + h))
+    } else {
+        let c = 0.5 * (x.0 + x.1);
+        let w = 0.5 * sy * width;
+        ((c - w, c + w), y)
+    }
+}
+
+/// Draws the series of `chart` on an already built chart context (linear or log axes).
+macro_rules! draw_series {
+    ($ctx:expr, $chart:expr, $keep:expr) => {{
+        let err = |e| anyhow!("{e:?}");
+        for s in &$chart.series {
+            let c = color(s.color);
+            let pts: Vec<(f64, f64)> = s.points.iter().copied().filter($keep).collect();
+            let anno = match s.mark {
+                Mark::Line => $ctx
+                    .draw_series(LineSeries::new(pts, c.stroke_width(2)))
+                    .map_err(err)?,
+                Mark::Dashed => $ctx
+                    .draw_series(DashedLineSeries::new(pts, 8, 5, c.stroke_width(2)))
+                    .map_err(err)?,
+                Mark::Points => $ctx
+                    .draw_series(pts.iter().map(|&p| Circle::new(p, 4, c.filled())))
+                    .map_err(err)?,
+                Mark::Rings => $ctx
+                    .draw_series(pts.iter().map(|&p| Circle::new(p, 5, c.stroke_width(2))))
+                    .map_err(err)?,
+                Mark::Front => {
+                    $ctx.draw_series(pts.iter().map(|&p| Circle::new(p, 9, c.stroke_width(2))))
+                        .map_err(err)?;
+                    $ctx.draw_series(LineSeries::new(pts, c.stroke_width(2)))
+                        .map_err(err)?
+                }
+            };
+            if !s.label.is_empty() {
+                let mark = s.mark;
+                anno.label(s.label.clone()).legend(move |(x, y)| {
+                    let e: DynElement<_, _> = match mark {
+                        Mark::Points | Mark::Rings => {
+                            Circle::new((x + 10, y), 4, c.filled()).into_dyn()
+                        }
+                        _ => PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
+                            .into_dyn(),
+                    };
+                    e
+                });
+            }
+        }
+        if $chart.series.iter().any(|s| !s.label.is_empty()) {
+            $ctx.configure_series_labels()
+                .position(SeriesLabelPosition::UpperRight)
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK.mix(0.5))
+                .label_font(("sans-serif", 14))
+                .draw()
+                .map_err(err)?;
+        }
+    }};
+}
+
+fn render<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> anyhow::Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let err = |e| anyhow!("{e:?}");
+    root.fill(&WHITE).map_err(err)?;
+    let all = || chart.series.iter().flat_map(|s| s.points.iter());
+    let xr = range(all().map(|p| p.0), chart.log);
+    let yr = range(all().map(|p| p.1), chart.log);
+    let mut builder = ChartBuilder::on(root);
+    builder
+        .caption(&chart.title, ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(48)
+        .y_label_area_size(78);
+    let fmt = |v: &f64| {
+        let a = v.abs();
+        if a == 0.0 || (1e-2..1e4).contains(&a) {
+            format!("{}", (v * 1e4).round() / 1e4)
+        } else {
+            format!("{v:.0e}")
+        }
+    };
+    if chart.log {
+        let mut ctx = builder
+            .build_cartesian_2d((xr.0..xr.1).log_scale(), (yr.0..yr.1).log_scale())
+            .map_err(err)?;
+        ctx.configure_mesh()
+            .x_desc(&chart.x_label)
+            .y_desc(&chart.y_label)
+            .x_label_formatter(&fmt)
+            .y_label_formatter(&fmt)
+            .label_style(("sans-serif", 14))
+            .axis_desc_style(("sans-serif", 16))
+            .draw()
+            .map_err(err)?;
+        draw_series!(ctx, chart, |p: &(f64, f64)| p.0 > 0.0 && p.1 > 0.0);
+        note(&ctx.plotting_area().strip_coord_spec(), chart)?;
+    } else {
+        let (xr, yr) = if chart.equal_aspect {
+            let (w, h) = root.dim_in_pixel();
+            equalize(xr, yr, f64::from(w) - 102.0, f64::from(h) - 92.0)
+        } else {
+            (xr, yr)
+        };
+        let mut ctx = builder
+            .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
+            .map_err(err)?;
+        ctx.configure_mesh()
+            .x_desc(&chart.x_label)
+            .y_desc(&chart.y_label)
+            .x_label_formatter(&fmt)
+            .y_label_formatter(&fmt)
+            .label_style(("sans-serif", 14))
+            .axis_desc_style(("sans-serif", 16))
+            .draw()
+            .map_err(err)?;
+        draw_series!(ctx, chart, |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite());
+        note(&ctx.plotting_area().strip_coord_spec(), chart)?;
+    }
+    Ok(())
+}
+
+/// Prints the chart's note at the lower left of the plot area.
+fn note<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, chart: &Chart) -> anyhow::Result<()> {
+    if let Some(text) = &chart.note {
+        let (_, h) = area.dim_in_pixel();
+        for (i, line) in text.lines().rev().enumerate() {
+            area.draw_text(
+                line,
+                &("sans-serif", 14).into_font().color(&RGBColor(150, 0, 0)),
+                (8, h as i32 - 20 - 18 * i as i32),
+            )
+            .map_err(|e| anyhow!("{e:?}"))?;
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ranges_are_padded_and_log_ranges_positive() {
+        let (lo, hi) = range([1.0, 3.0, f64::NAN].into_iter(), false);
+        assert!((lo - 0.9).abs() < 1e-12 && (hi - 3.1).abs() < 1e-12);
+        let (lo, hi) = range([-1.0, 1e-3, 1e2].into_iter(), true);
+        assert!(lo > 0.0 && lo < 1e-3 && hi > 1e2);
+        assert_eq!(range(std::iter::empty(), false), (0.0, 1.0));
+    }
+
+    #[test]
+    fn equal_aspect_widens_the_short_range() {
+        let (x, y) = equalize((0.0, 1.0), (0.0, 0.1), 100.0, 100.0);
+        assert_eq!(x, (0.0, 1.0));
+        assert!((y.1 - y.0 - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn writes_png_and_svg_with_text() {
+        let dir = std::env::temp_dir().join(format!("xtask-plot-{}", std::process::id()));
+        let chart = Chart {
+            title: "test".into(),
+            x_label: "x (m)".into(),
+            y_label: "y (m)".into(),
+            series: vec![Series::new(
+                "a",
+                vec![(1.0, 1.0), (2.0, 4.0)],
+                Mark::Front,
+                0,
+            )],
+            log: true,
+            note: Some("note".into()),
+            ..Default::default()
+        };
+        let files = save(&chart, &dir, "t").unwrap();
+        let svg = std::fs::read_to_string(&files[1]).unwrap();
+        assert!(svg.contains("x (m)") && svg.contains("note"));
+        assert!(std::fs::metadata(&files[0]).unwrap().len() > 1000);
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+}
