@@ -6,6 +6,8 @@ use anyhow::{Context, bail};
 use clap::{Parser, Subcommand};
 
 mod hard;
+mod paper;
+mod pareto;
 mod plot;
 mod validate;
 
@@ -28,6 +30,12 @@ enum Task {
     /// validation/hard/criteria.json), prints the table, writes target/hard/report.{md,json};
     /// fails on any failed criterion.
     Hard(hard::HardArgs),
+    /// Reproduces the paper's Figs. 7-15 (PNG, SVG) and writes target/paper/report.{md,json}
+    /// with our numbers beside the paper's statements.
+    Paper(paper::PaperArgs),
+    /// Speed against error of the models on a static and a dynamic scene: table, log-log plot
+    /// with the Pareto front, speed-up at equal error; target/pareto/.
+    Pareto(pareto::ParetoArgs),
 }
 
 fn main() -> anyhow::Result<()> {
@@ -35,6 +43,8 @@ fn main() -> anyhow::Result<()> {
         Task::Check => check(),
         Task::Validate(args) => validate_and_exit(&args),
         Task::Hard(args) => hard_and_exit(&args),
+        Task::Paper(args) => Ok(println!("report: {}", paper::run(&args)?.display())),
+        Task::Pareto(args) => Ok(println!("report: {}", pareto::run(&args)?.display())),
     }
 }
 

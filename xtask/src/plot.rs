@@ -167,6 +167,22 @@ fn equalize(x: (f64, f64), y: (f64, f64), width: f64, height: f64) -> ((f64, f64
     }
 }
 
+/// Tick labels for an axis spanning `range`: zero for values within 1e-9 of the span of
+/// zero, plain decimals between 1e-2 and 1e4, else scientific notation.
+fn tick_label(range: (f64, f64)) -> impl Fn(&f64) -> String {
+    let span = (range.1 - range.0).abs();
+    move |v: &f64| {
+        let a = v.abs();
+        if a <= 1e-9 * span {
+            "0".into()
+        } else if (1e-2..1e4).contains(&a) {
+            format!("{}", (v * 1e4).round() / 1e4)
+        } else {
+            format!("{v:.0e}")
+        }
+    }
+}
+
 /// Draws the series of `chart` on an already built chart context (linear or log axes).
 macro_rules! draw_series {
     ($ctx:expr, $chart:expr, $keep:expr) => {{
@@ -196,15 +212,17 @@ macro_rules! draw_series {
             };
             if !s.label.is_empty() {
                 let mark = s.mark;
+                // Two segments: contiguous for lines, apart for dashes, one thick dot for
+                // points.
+                let (a, b, w) = match mark {
+                    Mark::Dashed => ((0, 7), (13, 20), 2),
+                    Mark::Points | Mark::Rings => ((7, 10), (10, 13), 7),
+                    _ => ((0, 10), (10, 20), 2),
+                };
                 anno.label(s.label.clone()).legend(move |(x, y)| {
-                    let e: DynElement<_, _> = match mark {
-                        Mark::Points | Mark::Rings => {
-                            Circle::new((x + 10, y), 4, c.filled()).into_dyn()
-                        }
-                        _ => PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
-                            .into_dyn(),
-                    };
-                    e
+                    EmptyElement::at((x, y))
+                        + PathElement::new(vec![(a.0, 0), (a.1, 0)], c.stroke_width(w))
+                        + PathElement::new(vec![(b.0, 0), (b.1, 0)], c.stroke_width(w))
                 });
             }
         }
@@ -235,14 +253,7 @@ where
         .margin(12)
         .x_label_area_size(48)
         .y_label_area_size(78);
-    let fmt = |v: &f64| {
-        let a = v.abs();
-        if a == 0.0 || (1e-2..1e4).contains(&a) {
-            format!("{}", (v * 1e4).round() / 1e4)
-        } else {
-            format!("{v:.0e}")
-        }
-    };
+    let (fx, fy) = (tick_label(xr), tick_label(yr));
     if chart.log {
         let mut ctx = builder
             .build_cartesian_2d((xr.0..xr.1).log_scale(), (yr.0..yr.1).log_scale())
@@ -250,8 +261,8 @@ where
         ctx.configure_mesh()
             .x_desc(&chart.x_label)
             .y_desc(&chart.y_label)
-            .x_label_formatter(&fmt)
-            .y_label_formatter(&fmt)
+            .x_label_formatter(&fx)
+            .y_label_formatter(&fy)
             .label_style(("sans-serif", 14))
             .axis_desc_style(("sans-serif", 16))
             .draw()
@@ -271,8 +282,8 @@ where
         ctx.configure_mesh()
             .x_desc(&chart.x_label)
             .y_desc(&chart.y_label)
-            .x_label_formatter(&fmt)
-            .y_label_formatter(&fmt)
+            .x_label_formatter(&fx)
+            .y_label_formatter(&fy)
             .label_style(("sans-serif", 14))
             .axis_desc_style(("sans-serif", 16))
             .draw()

@@ -148,7 +148,7 @@ fn load_scenes(dir: &Path) -> anyhow::Result<BTreeMap<String, Scene>> {
     Ok(scenes)
 }
 
-fn progress_bar(scenes: usize) -> ProgressBar {
+pub(crate) fn progress_bar(scenes: usize) -> ProgressBar {
     let bar = ProgressBar::with_draw_target(
         Some(scenes as u64 * 1000),
         ProgressDrawTarget::stderr_with_hz(4),

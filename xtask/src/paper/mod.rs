@@ -1,0 +1,215 @@
+//! `cargo xtask paper`: runs the paper's scenes (SPEC 8) on the shared runner
+//! (`strand_scene::run_scene`), draws Figs. 7-15 as PNG and SVG and writes
+//! `target/paper/report.{md,json}` with our numbers beside the paper's statements.
+
+mod dynamics;
+mod fine;
+pub mod report;
+mod statics;
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, bail};
+use indicatif::ProgressBar;
+use strand_scene::{RunOptions, RunSummary, Scene, run_scene};
+
+use crate::plot::{self, Chart};
+use crate::validate::machine::Provenance;
+use crate::validate::{progress_bar, repo_root};
+use report::{Finding, PaperReport};
+
+/// Options of `cargo xtask paper`.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct PaperArgs {
+    /// Folder of the figures, the report and the runs [default: target/paper].
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Also copy the figures the README shows into docs/.
+    #[arg(long)]
+    pub update_docs: bool,
+}
+
+/// The figures the README shows (file stems in the output folder).
+const DOCS_FIGURES: [&str; 3] = ["fig09-shapes", "fig10-stiffness", "fig14-tip"];
+
+/// A scene's run: its folder and the summaries of the models that ran.
+pub(crate) struct SceneRun {
+    /// The scene.
+    pub scene: Scene,
+    /// Folder with one sub-folder per model.
+    pub dir: PathBuf,
+    /// One summary per model run.
+    pub summaries: Vec<RunSummary>,
+}
+
+impl SceneRun {
+    /// The folder of `model` if it ran and finished, else why not.
+    pub fn model(&self, model: &str) -> Result<PathBuf, String> {
+        match self.summaries.iter().find(|s| s.model == model) {
+            Some(s) if s.status == "ok" => Ok(self.dir.join(model)),
+            Some(s) => Err(format!(
+                "the {model} model failed: {}",
+                s.error.as_deref().unwrap_or("no reason given")
+            )),
+            None if model == "fine" => Err(
+                "the shared runner produced no fine-model run for this scene (the fine model is \
+                 not wired into it yet)"
+                    .into(),
+            ),
+            None => Err(format!("the scene does not run the {model} model")),
+        }
+    }
+}
+
+/// Runs `scene` into `dir` (cleared first, so that no earlier result stands in for a model
+/// this run skips), reporting progress on `bar` from `base` to `base + 999`.
+pub(crate) fn run_into(
+    scene: &Scene,
+    dir: &Path,
+    bar: &ProgressBar,
+    base: u64,
+    label: &str,
+) -> anyhow::Result<Vec<RunSummary>> {
+    match std::fs::remove_dir_all(dir) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+            return Err(e).with_context(|| format!("clearing {}", dir.display()));
+        }
+        _ => {}
+    }
+    let opts = RunOptions {
+        out: dir.to_path_buf(),
+        vtk: false,
+    };
+    let mut progress = |model: &str, f: f64| {
+        bar.set_message(format!("{label} {model}"));
+        bar.set_position(base + (f.clamp(0.0, 1.0) * 999.0) as u64);
+    };
+    run_scene(scene, &opts, &mut progress).map_err(|e| anyhow::anyhow!("{label}: {e}"))
+}
+
+/// Output folder, progress and the figures written so far.
+pub(crate) struct Figures {
+    /// Output folder.
+    pub out: PathBuf,
+    /// (title, files relative to `out`).
+    pub written: Vec<(String, Vec<String>)>,
+}
+
+impl Figures {
+    /// Draws `chart` as `out/stem.{png,svg}`.
+    pub fn save(&mut self, stem: &str, chart: &Chart) -> anyhow::Result<()> {
+        let files = plot::save(chart, &self.out, stem)?;
+        self.written.push((
+            chart.title.clone(),
+            files
+                .iter()
+                .filter_map(|f| f.file_name().map(|n| n.to_string_lossy().into_owned()))
+                .collect(),
+        ));
+        Ok(())
+    }
+}
+
+/// The scene `validation/NAME.json`.
+pub(crate) fn load_scene(name: &str) -> anyhow::Result<Scene> {
+    let path = repo_root().join("validation").join(format!("{name}.json"));
+    Scene::load(&path).with_context(|| format!("{}", path.display()))
+}
+
+/// Runs the paper's scenes, draws the figures, writes the report; returns the report's path.
+pub fn run(args: &PaperArgs) -> anyhow::Result<PathBuf> {
+    let t0 = Instant::now();
+    let root = repo_root();
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| root.join("target").join("paper"));
+    std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
+    let provenance = Provenance::detect(&root);
+    let names = [
+        "paper-sec3-g8",
+        "paper-sec3-g10",
+        "paper-sec3-g12",
+        "paper-fig14-pendulum",
+        "paper-fig7-g8",
+        "paper-fig7-g10",
+        "paper-fig7-g12",
+        "paper-fig8-clamped",
+        "paper-fig8-pinned",
+    ];
+    let bar = progress_bar(names.len());
+    let mut runs = Vec::new();
+    for (i, name) in names.iter().enumerate() {
+        let scene = load_scene(name)?;
+        let dir = out.join("runs").join(name);
+        let label = format!("[{}/{}] {name}", i + 1, names.len());
+        let summaries = run_into(&scene, &dir, &bar, i as u64 * 1000, &label)?;
+        for s in summaries.iter().filter(|s| s.status != "ok") {
+            bar.println(format!(
+                "{name} {}: {}",
+                s.model,
+                s.error.as_deref().unwrap_or("failed")
+            ));
+        }
+        runs.push(SceneRun {
+            scene,
+            dir,
+            summaries,
+        });
+    }
+    bar.set_message("figures");
+    let mut figs = Figures {
+        out: out.clone(),
+        written: Vec::new(),
+    };
+    let mut findings: Vec<Finding> = Vec::new();
+    let by_name = |n: &str| runs.iter().find(|r| r.scene.name == n).expect("ran");
+    let fig7: Vec<&SceneRun> = ["paper-fig7-g8", "paper-fig7-g10", "paper-fig7-g12"]
+        .iter()
+        .map(|n| by_name(n))
+        .collect();
+    let fig8: Vec<&SceneRun> = ["paper-fig8-clamped", "paper-fig8-pinned"]
+        .iter()
+        .map(|n| by_name(n))
+        .collect();
+    let sec3: Vec<&SceneRun> = ["paper-sec3-g8", "paper-sec3-g10", "paper-sec3-g12"]
+        .iter()
+        .map(|n| by_name(n))
+        .collect();
+    findings.extend(fine::fig7(&fig7, &mut figs)?);
+    findings.extend(fine::fig8(&fig8, &mut figs)?);
+    findings.extend(statics::figures(&sec3, &mut figs)?);
+    findings.extend(dynamics::figures(
+        by_name("paper-fig14-pendulum"),
+        &mut figs,
+    )?);
+    bar.finish_and_clear();
+    let report = PaperReport {
+        provenance,
+        wall_time_s: t0.elapsed().as_secs_f64(),
+        findings,
+        figures: figs.written,
+    };
+    let files = report.write(&out)?;
+    if args.update_docs {
+        copy_to_docs(&out, &DOCS_FIGURES)?;
+    }
+    Ok(files[0].clone())
+}
+
+/// Copies `out/STEM.png` for each stem into the repository's docs/ folder.
+pub(crate) fn copy_to_docs(out: &Path, stems: &[&str]) -> anyhow::Result<()> {
+    let docs = repo_root().join("docs");
+    std::fs::create_dir_all(&docs).with_context(|| format!("creating {}", docs.display()))?;
+    for stem in stems {
+        let from = out.join(format!("{stem}.png"));
+        if !from.exists() {
+            bail!("{} was not drawn", from.display());
+        }
+        let to = docs.join(format!("{stem}.png"));
+        std::fs::copy(&from, &to).with_context(|| format!("copying to {}", to.display()))?;
+        println!("updated {}", to.display());
+    }
+    Ok(())
+}
