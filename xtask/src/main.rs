@@ -43,8 +43,8 @@ fn main() -> anyhow::Result<()> {
         Task::Check => check(),
         Task::Validate(args) => validate_and_exit(&args),
         Task::Hard(args) => hard_and_exit(&args),
-        Task::Paper(args) => Ok(println!("report: {}", paper::run(&args)?.display())),
-        Task::Pareto(args) => Ok(println!("report: {}", pareto::run(&args)?.display())),
+        Task::Paper(args) => paper::run(&args),
+        Task::Pareto(args) => pareto::run(&args),
     }
 }
 

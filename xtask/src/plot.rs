@@ -42,7 +42,12 @@ pub struct Series {
 
 impl Series {
     /// A series from points.
-    pub fn new(label: impl Into<String>, points: Vec<(f64, f64)>, mark: Mark, color: usize) -> Self {
+    pub fn new(
+        label: impl Into<String>,
+        points: Vec<(f64, f64)>,
+        mark: Mark,
+        color: usize,
+    ) -> Self {
         Series {
             label: label.into(),
             points,
@@ -75,6 +80,8 @@ pub struct Chart {
     pub series: Vec<Series>,
     /// Log-log axes (non-positive values are left out).
     pub log: bool,
+    /// Log y axis on a linear x axis (ignored when `log` is set).
+    pub log_y: bool,
     /// Same scale on both axes (shapes).
     pub equal_aspect: bool,
     /// A line of text inside the plot area, e.g. what is not available.
@@ -246,7 +253,7 @@ where
     root.fill(&WHITE).map_err(err)?;
     let all = || chart.series.iter().flat_map(|s| s.points.iter());
     let xr = range(all().map(|p| p.0), chart.log);
-    let yr = range(all().map(|p| p.1), chart.log);
+    let yr = range(all().map(|p| p.1), chart.log || chart.log_y);
     let mut builder = ChartBuilder::on(root);
     builder
         .caption(&chart.title, ("sans-serif", 20))
@@ -254,21 +261,36 @@ where
         .x_label_area_size(48)
         .y_label_area_size(78);
     let (fx, fy) = (tick_label(xr), tick_label(yr));
+    macro_rules! mesh_and_series {
+        ($ctx:expr, $keep:expr) => {{
+            let mut ctx = $ctx;
+            ctx.configure_mesh()
+                .x_desc(&chart.x_label)
+                .y_desc(&chart.y_label)
+                .x_label_formatter(&fx)
+                .y_label_formatter(&fy)
+                .label_style(("sans-serif", 14))
+                .axis_desc_style(("sans-serif", 16))
+                .draw()
+                .map_err(err)?;
+            draw_series!(ctx, chart, $keep);
+            note(&ctx.plotting_area().strip_coord_spec(), chart)?;
+        }};
+    }
     if chart.log {
-        let mut ctx = builder
-            .build_cartesian_2d((xr.0..xr.1).log_scale(), (yr.0..yr.1).log_scale())
-            .map_err(err)?;
-        ctx.configure_mesh()
-            .x_desc(&chart.x_label)
-            .y_desc(&chart.y_label)
-            .x_label_formatter(&fx)
-            .y_label_formatter(&fy)
-            .label_style(("sans-serif", 14))
-            .axis_desc_style(("sans-serif", 16))
-            .draw()
-            .map_err(err)?;
-        draw_series!(ctx, chart, |p: &(f64, f64)| p.0 > 0.0 && p.1 > 0.0);
-        note(&ctx.plotting_area().strip_coord_spec(), chart)?;
+        mesh_and_series!(
+            builder
+                .build_cartesian_2d((xr.0..xr.1).log_scale(), (yr.0..yr.1).log_scale())
+                .map_err(err)?,
+            |p: &(f64, f64)| p.0 > 0.0 && p.1 > 0.0
+        );
+    } else if chart.log_y {
+        mesh_and_series!(
+            builder
+                .build_cartesian_2d(xr.0..xr.1, (yr.0..yr.1).log_scale())
+                .map_err(err)?,
+            |p: &(f64, f64)| p.0.is_finite() && p.1 > 0.0
+        );
     } else {
         let (xr, yr) = if chart.equal_aspect {
             let (w, h) = root.dim_in_pixel();
@@ -276,20 +298,12 @@ where
         } else {
             (xr, yr)
         };
-        let mut ctx = builder
-            .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
-            .map_err(err)?;
-        ctx.configure_mesh()
-            .x_desc(&chart.x_label)
-            .y_desc(&chart.y_label)
-            .x_label_formatter(&fx)
-            .y_label_formatter(&fy)
-            .label_style(("sans-serif", 14))
-            .axis_desc_style(("sans-serif", 16))
-            .draw()
-            .map_err(err)?;
-        draw_series!(ctx, chart, |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite());
-        note(&ctx.plotting_area().strip_coord_spec(), chart)?;
+        mesh_and_series!(
+            builder
+                .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
+                .map_err(err)?,
+            |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite()
+        );
     }
     Ok(())
 }

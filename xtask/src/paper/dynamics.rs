@@ -50,7 +50,11 @@ fn largest_abs(v: &[f64]) -> f64 {
 }
 
 fn better(ok: bool) -> Verdict {
-    if ok { Verdict::Agrees } else { Verdict::Differs }
+    if ok {
+        Verdict::Agrees
+    } else {
+        Verdict::Differs
+    }
 }
 
 /// Figs. 14 and 15 from the pendulum run.
@@ -122,10 +126,7 @@ pub fn figures(run: &SceneRun, figs: &mut Figures) -> anyhow::Result<Vec<Finding
         better(early <= 0.02 * run.scene.strand.length()),
         format!("{setup}; 'mostly agree' read as within 2 % of the length"),
     ));
-    let (sx, sy) = (
-        (span(&eq.x), span(&tr.x)),
-        (span(&eq.y), span(&tr.y)),
-    );
+    let (sx, sy) = ((span(&eq.x), span(&tr.x)), (span(&eq.y), span(&tr.y)));
     findings.push(Finding::new(
         "Fig. 14(a)",
         "the equivalent tip moves over a larger range in X and in Y than the traditional one",
@@ -231,13 +232,7 @@ pub fn figures(run: &SceneRun, figs: &mut Figures) -> anyhow::Result<Vec<Finding
             Series::xy("kinetic", &e.t, &e.kinetic, Mark::Line, 0),
             Series::xy("gravity", &e.t, &e.gravity, Mark::Line, 1),
             Series::xy("elastic", &e.t, &e.elastic, Mark::Line, 2),
-            Series::xy(
-                "kinetic + gravity + elastic",
-                &e.t,
-                &mech,
-                Mark::Dashed,
-                6,
-            ),
+            Series::xy("kinetic + gravity + elastic", &e.t, &mech, Mark::Dashed, 6),
             Series::xy("dissipated", &e.t, &e.dissipated, Mark::Line, 3),
         ];
         figs.save(

@@ -199,7 +199,9 @@ pub fn fig8(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Findin
                 x_label: "t (s)".into(),
                 y_label: "tip y (m)".into(),
                 series,
-                note: fine.is_none().then(|| "fine model: not available".to_string()),
+                note: fine
+                    .is_none()
+                    .then(|| "fine model: not available".to_string()),
                 ..Default::default()
             },
         )?;
@@ -240,17 +242,14 @@ pub fn fig8(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Findin
                     verdict,
                     trad_gap,
                 ));
-                errors.push(Series::new(format!("{bc}"), d, Mark::Line, i));
+                errors.push(Series::new(bc.clone(), d, Mark::Line, i));
             }
             None => findings.push(Finding::new(
                 &format!("Fig. 8 ({bc})"),
                 paper,
                 "equivalent vs fine: not available",
                 Verdict::NotAvailable,
-                format!(
-                    "{}; {trad_gap}",
-                    missing.clone().unwrap_or_default()
-                ),
+                format!("{}; {trad_gap}", missing.clone().unwrap_or_default()),
             )),
         }
     }

@@ -117,8 +117,8 @@ pub(crate) fn load_scene(name: &str) -> anyhow::Result<Scene> {
     Scene::load(&path).with_context(|| format!("{}", path.display()))
 }
 
-/// Runs the paper's scenes, draws the figures, writes the report; returns the report's path.
-pub fn run(args: &PaperArgs) -> anyhow::Result<PathBuf> {
+/// Runs the paper's scenes, draws the figures, writes the report and prints its path.
+pub fn run(args: &PaperArgs) -> anyhow::Result<()> {
     let t0 = Instant::now();
     let root = repo_root();
     let out = args
@@ -195,7 +195,8 @@ pub fn run(args: &PaperArgs) -> anyhow::Result<PathBuf> {
     if args.update_docs {
         copy_to_docs(&out, &DOCS_FIGURES)?;
     }
-    Ok(files[0].clone())
+    println!("report: {}", files[0].display());
+    Ok(())
 }
 
 /// Copies `out/STEM.png` for each stem into the repository's docs/ folder.

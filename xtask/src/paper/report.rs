@@ -117,7 +117,10 @@ impl PaperReport {
             count(Verdict::Differs),
             count(Verdict::NotAvailable)
         );
-        let _ = writeln!(m, "| figure | paper | ours | verdict | where we differ, and why |");
+        let _ = writeln!(
+            m,
+            "| figure | paper | ours | verdict | where we differ, and why |"
+        );
         let _ = writeln!(m, "|---|---|---|---|---|");
         for f in &self.findings {
             let _ = writeln!(
@@ -143,7 +146,8 @@ impl PaperReport {
     pub fn write(&self, dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
         let md = dir.join("report.md");
         let json = dir.join("report.json");
-        std::fs::write(&md, self.markdown()).with_context(|| format!("writing {}", md.display()))?;
+        std::fs::write(&md, self.markdown())
+            .with_context(|| format!("writing {}", md.display()))?;
         std::fs::write(&json, serde_json::to_string_pretty(self)? + "\n")
             .with_context(|| format!("writing {}", json.display()))?;
         Ok(vec![md, json])

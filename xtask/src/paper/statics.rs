@@ -232,12 +232,7 @@ pub fn figures(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Fin
         ("K_max (all wires stick)", k_max, 3),
         ("traditional EI", ei, 4),
     ] {
-        series.push(Series::new(
-            label,
-            vec![(0.0, v), (l, v)],
-            Mark::Dashed,
-            c,
-        ));
+        series.push(Series::new(label, vec![(0.0, v), (l, v)], Mark::Dashed, c));
     }
     figs.save(
         "fig10-stiffness",
@@ -246,7 +241,6 @@ pub fn figures(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Fin
             x_label: "s (m)".into(),
             y_label: "bending stiffness (N m^2)".into(),
             series,
-            log: false,
             ..Default::default()
         },
     )?;
@@ -260,9 +254,17 @@ pub fn figures(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Fin
         .enumerate()
         .map(|(i, g)| {
             let e = &eqs[i];
+            let (j, peak) = e
+                .stiffness
+                .iter()
+                .enumerate()
+                .fold((0, 0.0), |m, (j, &k)| if k > m.1 { (j, k) } else { m });
             format!(
-                "g = {g}: {:.3} K_min at the root, {:.3} K_max at the tip",
+                "g = {g}: {:.3} K_min at the root, peak {:.3} K_max at s = {:.3} m, {:.3} K_max \
+                 at the last point",
                 e.stiffness[0] / k_min,
+                peak / k_max,
+                e.s[j],
                 e.stiffness[e.s.len() - 1] / k_max
             )
         })
@@ -468,7 +470,7 @@ pub fn figures(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Fin
             x_label: "wire phase (deg)".into(),
             y_label: "curvature (1/m)".into(),
             series,
-            log: false,
+            log_y: true,
             ..Default::default()
         },
     )?;
@@ -485,10 +487,7 @@ pub fn figures(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Fin
             .take_while(|p| p.1 == m)
             .last()
             .map_or(0.0, |p| p.0);
-        let first_stick = along
-            .iter()
-            .find(|p| p.1 < m)
-            .map_or(f64::NAN, |p| p.0);
+        let first_stick = along.iter().find(|p| p.1 < m).map_or(f64::NAN, |p| p.0);
         let tail: Vec<f64> = along
             .iter()
             .filter(|p| p.0 >= 0.9 * l)

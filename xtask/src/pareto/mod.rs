@@ -204,7 +204,12 @@ fn plan(scene: &Scene, quick: bool) -> Vec<Config> {
             for &n in els {
                 out.push(beam(Model::Equivalent, n, Some("verlet"), None));
                 for &h in steps {
-                    out.push(beam(Model::Equivalent, n, Some("generalized-alpha"), Some(h)));
+                    out.push(beam(
+                        Model::Equivalent,
+                        n,
+                        Some("generalized-alpha"),
+                        Some(h),
+                    ));
                 }
             }
             for &n in if quick { &[8][..] } else { &[8, 16, 32] } {
@@ -264,8 +269,8 @@ pub struct Point {
     pub note: String,
 }
 
-/// Runs the comparison and writes the report; returns the report's path.
-pub fn run(args: &ParetoArgs) -> anyhow::Result<PathBuf> {
+/// Runs the comparison, writes the report and prints the headlines and the report's path.
+pub fn run(args: &ParetoArgs) -> anyhow::Result<()> {
     let t0 = Instant::now();
     let root = repo_root();
     let out = args
@@ -275,7 +280,10 @@ pub fn run(args: &ParetoArgs) -> anyhow::Result<PathBuf> {
     std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
     let provenance = Provenance::detect(&root);
     let repeats = if args.quick { 1 } else { args.repeats.max(1) };
-    let scenes = [load_scene("paper-fig7-g8")?, load_scene("paper-fig8-clamped")?];
+    let scenes = [
+        load_scene("paper-fig7-g8")?,
+        load_scene("paper-fig8-clamped")?,
+    ];
     let plans: Vec<Vec<Config>> = scenes.iter().map(|s| plan(s, args.quick)).collect();
     let total: usize = plans.iter().map(|p| p.len() * repeats + 2).sum();
     let bar = progress_bar(total);
@@ -284,8 +292,7 @@ pub fn run(args: &ParetoArgs) -> anyhow::Result<PathBuf> {
     for (scene, plan) in scenes.iter().zip(&plans) {
         let dir = out.join("runs").join(&scene.name);
         bar.set_message(format!("{} reference", scene.name));
-        let (reference, reference_note) =
-            reference(scene, &dir, &bar, &mut tick, args.quick)?;
+        let (reference, reference_note) = reference(scene, &dir, &bar, &mut tick, args.quick)?;
         let mut points = Vec::new();
         let mut fine_missing: Option<String> = None;
         for c in plan {
@@ -380,7 +387,8 @@ pub fn run(args: &ParetoArgs) -> anyhow::Result<PathBuf> {
     if args.update_docs {
         copy_to_docs(&out, &["pareto-static", "pareto-dynamic"])?;
     }
-    Ok(path)
+    println!("report: {}", path.display());
+    Ok(())
 }
 
 fn unavailable(c: &Config, why: &str) -> Point {
@@ -473,5 +481,45 @@ fn measure(reference: &Reference, dir: &std::path::Path, tip: [f64; 3]) -> anyho
             }
             Ok(d.iter().fold(0.0, |m: f64, p| m.max(p.1)))
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each configuration runs only its model, with its size, integrator and step.
+    #[test]
+    fn configurations_run_one_model_each() {
+        let scene = load_scene("paper-fig8-clamped").unwrap();
+        let plan = plan(&scene, false);
+        assert!(plan.iter().any(|c| c.model == Model::Fine && c.size == 77));
+        let ga = plan
+            .iter()
+            .find(|c| c.integrator.as_deref() == Some("generalized-alpha"))
+            .unwrap();
+        let s = ga.scene(&scene, None).unwrap();
+        assert!(s.models.traditional.is_none() && s.models.fine.is_none());
+        assert_eq!(s.models.equivalent.unwrap().elements, ga.size);
+        let Analysis::Dynamic(d) = s.analysis else {
+            panic!("dynamic")
+        };
+        assert_eq!(d.time_step, ga.time_step);
+        let verlet = plan
+            .iter()
+            .find(|c| c.integrator.as_deref() == Some("verlet"))
+            .unwrap();
+        let Analysis::Dynamic(d) = verlet.scene(&scene, Some(1e-3)).unwrap().analysis else {
+            panic!("dynamic")
+        };
+        assert_eq!(
+            (d.integrator, d.time_step, d.output_interval),
+            (strand_scene::IntegratorKind::Verlet, None, 1e-3)
+        );
+        let fine = plan.iter().find(|c| c.model == Model::Fine).unwrap();
+        let s = fine.scene(&scene, None).unwrap();
+        assert_eq!(s.models.fine.unwrap().segments_per_wire, fine.size);
+        assert!(s.models.equivalent.is_none());
+        assert_eq!(fine.label(), "fine 20 seg/wire, generalized-alpha h=5e-4");
     }
 }

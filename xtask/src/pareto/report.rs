@@ -280,7 +280,8 @@ impl ParetoReport {
         }
         let md = dir.join("report.md");
         let json = dir.join("report.json");
-        std::fs::write(&md, self.markdown()).with_context(|| format!("writing {}", md.display()))?;
+        std::fs::write(&md, self.markdown())
+            .with_context(|| format!("writing {}", md.display()))?;
         std::fs::write(&json, serde_json::to_string_pretty(self)? + "\n")
             .with_context(|| format!("writing {}", json.display()))?;
         Ok(md)
