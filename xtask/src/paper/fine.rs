@@ -266,3 +266,58 @@ pub fn fig8(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Findin
     )?;
     Ok(findings)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::paper::{load_scene, run_into};
+
+    /// A scene run whose `fine` folder is a copy of the equivalent model's: the fine-model
+    /// comparison is used (and finds no difference) whenever the runner produced fine results.
+    fn with_copied_fine(name: &str, root: &std::path::Path) -> SceneRun {
+        let mut scene = load_scene(name).unwrap();
+        let mut file = scene.file.clone();
+        file.models.fine = None;
+        scene = Scene::from_file(file).unwrap();
+        let dir = root.join(name);
+        let bar = indicatif::ProgressBar::hidden();
+        let mut summaries = run_into(&scene, &dir, &bar, 0, name).unwrap();
+        let fine = dir.join("fine");
+        std::fs::create_dir_all(&fine).unwrap();
+        for f in std::fs::read_dir(dir.join("equivalent")).unwrap() {
+            let f = f.unwrap().path();
+            std::fs::copy(&f, fine.join(f.file_name().unwrap())).unwrap();
+        }
+        let mut s = summaries[0].clone();
+        s.model = "fine".into();
+        summaries.push(s);
+        SceneRun {
+            scene,
+            dir,
+            summaries,
+        }
+    }
+
+    #[test]
+    fn fine_results_are_compared_when_present() {
+        let root = std::env::temp_dir().join(format!("xtask-paper-fine-{}", std::process::id()));
+        let mut figs = Figures {
+            out: root.join("figs"),
+            written: Vec::new(),
+        };
+        let s = with_copied_fine("paper-fig7-g8", &root);
+        let f = fig7(&[&s], &mut figs).unwrap();
+        assert_eq!(f[0].verdict, Verdict::Agrees, "{f:?}");
+        assert!(f[0].ours.contains("g = 8: 0.00e0 m"), "{}", f[0].ours);
+        let d = with_copied_fine("paper-fig8-pinned", &root);
+        let f = fig8(&[&d], &mut figs).unwrap();
+        assert_eq!(f[0].verdict, Verdict::Agrees, "{f:?}");
+        assert!(f[0].ours.contains("0.00e0 m over 0-0.2 s"), "{}", f[0].ours);
+        assert!(
+            figs.written
+                .iter()
+                .any(|(_, files)| files.contains(&"fig08-error.png".into()))
+        );
+        std::fs::remove_dir_all(root).unwrap();
+    }
+}

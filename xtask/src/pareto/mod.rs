@@ -44,6 +44,9 @@ pub struct ParetoArgs {
     /// Folder of the table, the plots and the runs [default: target/pareto].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Segments per wire of the fine-model runs.
+    #[arg(long, value_name = "N,N,...", value_delimiter = ',', default_values_t = [20, 40, 77])]
+    pub fine_segments: Vec<usize>,
     /// Also copy the plots the README shows into docs/.
     #[arg(long)]
     pub update_docs: bool,
@@ -55,6 +58,7 @@ impl Default for ParetoArgs {
             repeats: 3,
             quick: false,
             out: None,
+            fine_segments: vec![20, 40, 77],
             update_docs: false,
         }
     }
@@ -168,8 +172,12 @@ impl Config {
 }
 
 /// The configurations of a scene.
-fn plan(scene: &Scene, quick: bool) -> Vec<Config> {
-    let fine_sizes: Vec<usize> = if quick { vec![20] } else { vec![20, 40, 77] };
+fn plan(scene: &Scene, quick: bool, fine_sizes: &[usize]) -> Vec<Config> {
+    let fine_sizes = if quick {
+        &fine_sizes[..1.min(fine_sizes.len())]
+    } else {
+        fine_sizes
+    };
     let beam = |model, size, integrator: Option<&str>, time_step| Config {
         model,
         size,
@@ -190,7 +198,7 @@ fn plan(scene: &Scene, quick: bool) -> Vec<Config> {
             for &n in if quick { &[8][..] } else { &[8, 16, 32] } {
                 out.push(beam(Model::Traditional, n, None, None));
             }
-            for &n in &fine_sizes {
+            for &n in fine_sizes {
                 out.push(beam(Model::Fine, n, None, None));
             }
         }
@@ -226,7 +234,7 @@ fn plan(scene: &Scene, quick: bool) -> Vec<Config> {
                 Analysis::Dynamic(d) => d.time_step,
                 Analysis::Static { .. } => None,
             };
-            for &n in &fine_sizes {
+            for &n in fine_sizes {
                 out.push(beam(Model::Fine, n, Some(integrator), h));
             }
         }
@@ -284,7 +292,10 @@ pub fn run(args: &ParetoArgs) -> anyhow::Result<()> {
         load_scene("paper-fig7-g8")?,
         load_scene("paper-fig8-clamped")?,
     ];
-    let plans: Vec<Vec<Config>> = scenes.iter().map(|s| plan(s, args.quick)).collect();
+    let plans: Vec<Vec<Config>> = scenes
+        .iter()
+        .map(|s| plan(s, args.quick, &args.fine_segments))
+        .collect();
     let total: usize = plans.iter().map(|p| p.len() * repeats + 2).sum();
     let bar = progress_bar(total);
     let mut tick = 0u64;
@@ -492,7 +503,7 @@ mod tests {
     #[test]
     fn configurations_run_one_model_each() {
         let scene = load_scene("paper-fig8-clamped").unwrap();
-        let plan = plan(&scene, false);
+        let plan = plan(&scene, false, &[20, 40, 77]);
         assert!(plan.iter().any(|c| c.model == Model::Fine && c.size == 77));
         let ga = plan
             .iter()
