@@ -33,44 +33,74 @@ pub struct PaperArgs {
 /// The figures the README shows (file stems in the output folder).
 const DOCS_FIGURES: [&str; 3] = ["fig09-shapes", "fig10-stiffness", "fig14-tip"];
 
-/// A scene's run: its folder and the summaries of the models that ran.
+/// What became of one model of a scene.
+#[derive(Debug, Clone)]
+pub(crate) struct Outcome {
+    /// Model name (its folder).
+    pub model: String,
+    /// The run's summary when the runner returned one.
+    pub summary: Option<RunSummary>,
+    /// Why the model has no result: the runner's error.
+    pub error: Option<String>,
+}
+
+impl Outcome {
+    /// The summary of a run that finished.
+    pub fn ok(&self) -> Option<&RunSummary> {
+        self.summary.as_ref().filter(|s| s.status == "ok")
+    }
+}
+
+/// A scene's run: its folder and what became of each model it names.
 pub(crate) struct SceneRun {
     /// The scene.
     pub scene: Scene,
     /// Folder with one sub-folder per model.
     pub dir: PathBuf,
-    /// One summary per model run.
-    pub summaries: Vec<RunSummary>,
+    /// One outcome per model the scene names.
+    pub outcomes: Vec<Outcome>,
 }
 
 impl SceneRun {
     /// The folder of `model` if it ran and finished, else why not.
     pub fn model(&self, model: &str) -> Result<PathBuf, String> {
-        match self.summaries.iter().find(|s| s.model == model) {
-            Some(s) if s.status == "ok" => Ok(self.dir.join(model)),
-            Some(s) => Err(format!(
-                "the {model} model failed: {}",
-                s.error.as_deref().unwrap_or("no reason given")
+        match self.outcomes.iter().find(|o| o.model == model) {
+            Some(o) if o.ok().is_some() => Ok(self.dir.join(model)),
+            Some(o) => Err(format!(
+                "the {model} model did not finish: {}",
+                o.error
+                    .as_deref()
+                    .or(o.summary.as_ref().and_then(|s| s.error.as_deref()))
+                    .unwrap_or("no reason given")
             )),
-            None if model == "fine" => Err(
-                "the shared runner produced no fine-model run for this scene (the fine model is \
-                 not wired into it yet)"
-                    .into(),
-            ),
             None => Err(format!("the scene does not run the {model} model")),
         }
     }
 }
 
-/// Runs `scene` into `dir` (cleared first, so that no earlier result stands in for a model
-/// this run skips), reporting progress on `bar` from `base` to `base + 999`.
+/// The models `scene` names, in the runner's order.
+fn named_models(scene: &Scene) -> Vec<&'static str> {
+    let m = &scene.file.models;
+    [
+        ("equivalent", m.equivalent.is_some()),
+        ("traditional", m.traditional.is_some()),
+        ("fine", m.fine.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(n, on)| on.then_some(n))
+    .collect()
+}
+
+/// Runs each model of `scene` on its own into `dir` (cleared first, so that no earlier result
+/// stands in for a model this run skips), so that one model's failure keeps the others'
+/// results; reports progress on `bar` from `base` to `base + 999`.
 pub(crate) fn run_into(
     scene: &Scene,
     dir: &Path,
     bar: &ProgressBar,
     base: u64,
     label: &str,
-) -> anyhow::Result<Vec<RunSummary>> {
+) -> anyhow::Result<Vec<Outcome>> {
     match std::fs::remove_dir_all(dir) {
         Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
             return Err(e).with_context(|| format!("clearing {}", dir.display()));
@@ -81,11 +111,40 @@ pub(crate) fn run_into(
         out: dir.to_path_buf(),
         vtk: false,
     };
-    let mut progress = |model: &str, f: f64| {
-        bar.set_message(format!("{label} {model}"));
-        bar.set_position(base + (f.clamp(0.0, 1.0) * 999.0) as u64);
-    };
-    run_scene(scene, &opts, &mut progress).map_err(|e| anyhow::anyhow!("{label}: {e}"))
+    let models = named_models(scene);
+    let mut out = Vec::new();
+    for (k, model) in models.iter().enumerate() {
+        let mut file = scene.file.clone();
+        if *model != "equivalent" {
+            file.models.equivalent = None;
+        }
+        if *model != "traditional" {
+            file.models.traditional = None;
+        }
+        if *model != "fine" {
+            file.models.fine = None;
+        }
+        let single = Scene::from_file(file).with_context(|| format!("{label}: {model}"))?;
+        let n = models.len() as f64;
+        let mut progress = |m: &str, f: f64| {
+            bar.set_message(format!("{label} {m}"));
+            let done = (k as f64 + f.clamp(0.0, 1.0)) / n;
+            bar.set_position(base + (done * 999.0) as u64);
+        };
+        out.push(match run_scene(&single, &opts, &mut progress) {
+            Ok(mut s) => Outcome {
+                model: model.to_string(),
+                summary: s.pop(),
+                error: None,
+            },
+            Err(e) => Outcome {
+                model: model.to_string(),
+                summary: None,
+                error: Some(e.to_string()),
+            },
+        });
+    }
+    Ok(out)
 }
 
 /// Output folder, progress and the figures written so far.
@@ -144,19 +203,17 @@ pub fn run(args: &PaperArgs) -> anyhow::Result<()> {
         let scene = load_scene(name)?;
         let dir = out.join("runs").join(name);
         let label = format!("[{}/{}] {name}", i + 1, names.len());
-        let summaries = run_into(&scene, &dir, &bar, i as u64 * 1000, &label)?;
-        for s in summaries.iter().filter(|s| s.status != "ok") {
-            bar.println(format!(
-                "{name} {}: {}",
-                s.model,
-                s.error.as_deref().unwrap_or("failed")
-            ));
-        }
+        let outcomes = run_into(&scene, &dir, &bar, i as u64 * 1000, &label)?;
         runs.push(SceneRun {
             scene,
             dir,
-            summaries,
+            outcomes,
         });
+        for o in &runs[i].outcomes {
+            if let Err(why) = runs[i].model(&o.model) {
+                bar.println(format!("{name}: {why}"));
+            }
+        }
     }
     bar.set_message("figures");
     let mut figs = Figures {

@@ -29,6 +29,13 @@ use crate::validate::{progress_bar, repo_root};
 use metrics::{Tip, median};
 use report::{CaseReport, ParetoReport};
 
+/// A run longer than this (s) is timed once.
+pub const LONG_RUN_S: f64 = 30.0;
+
+fn s_wall(s: &Option<strand_scene::RunSummary>) -> f64 {
+    s.as_ref().map_or(0.0, |s| s.wall_time_s)
+}
+
 /// Elements of the dynamic reference run.
 pub const REFERENCE_ELEMENTS: usize = 128;
 
@@ -318,48 +325,51 @@ pub fn run(args: &ParetoArgs) -> anyhow::Result<()> {
             let run_dir = dir.join(c.label().replace([' ', ',', '='], "_"));
             let mut times = Vec::new();
             let mut last = None;
+            let mut failure = None;
             for r in 0..repeats {
                 let label = format!("{} {} ({}/{repeats})", scene.name, c.label(), r + 1);
-                let s = run_into(&cfg_scene, &run_dir, &bar, tick * 1000, &label)?;
+                let o = run_into(&cfg_scene, &run_dir, &bar, tick * 1000, &label)?;
                 tick += 1;
-                match s.into_iter().find(|s| s.model == c.model.name()) {
+                let o = o.into_iter().find(|o| o.model == c.model.name());
+                match o.as_ref().and_then(|o| o.ok()) {
                     Some(s) => {
                         times.push(s.wall_time_s);
-                        let failed = s.status != "ok";
-                        last = Some(s);
-                        if failed {
-                            break;
-                        }
+                        last = Some(s.clone());
                     }
-                    None => break,
+                    None => {
+                        failure = Some(o.map_or("the runner produced no result".into(), |o| {
+                            o.error
+                                .or(o.summary.and_then(|s| s.error))
+                                .unwrap_or_else(|| "no reason given".into())
+                        }));
+                        break;
+                    }
+                }
+                // A long run is timed once: its spread is small and the command stays short.
+                if s_wall(&last) > LONG_RUN_S {
+                    tick += (repeats - r - 1) as u64;
+                    break;
                 }
             }
             let Some(summary) = last else {
-                let why = format!(
-                    "the shared runner produced no {} run (not wired into it yet)",
-                    c.model.name()
-                );
+                let why = format!("failed: {}", failure.unwrap_or_default());
                 if c.model == Model::Fine {
-                    fine_missing = Some(why.clone());
+                    fine_missing = Some(format!(
+                        "not available: not attempted after the {} run failed",
+                        c.label()
+                    ));
                 }
                 points.push(unavailable(c, &why));
                 continue;
             };
             let model_dir = run_dir.join(c.model.name());
-            let (error, note) = if summary.status != "ok" {
-                (
-                    f64::NAN,
-                    format!(
-                        "failed: {}",
-                        summary.error.as_deref().unwrap_or("no reason given")
-                    ),
-                )
-            } else {
-                match measure(&reference, &model_dir, summary.tip) {
-                    Ok(e) => (e, String::new()),
-                    Err(e) => (f64::NAN, format!("{e:#}")),
-                }
+            let (error, mut note) = match measure(&reference, &model_dir, summary.tip) {
+                Ok(e) => (e, String::new()),
+                Err(e) => (f64::NAN, format!("{e:#}")),
             };
+            if times.len() < repeats {
+                note = format!("timed once (longer than {LONG_RUN_S} s) {note}");
+            }
             points.push(Point {
                 model: c.model,
                 label: c.label(),
@@ -414,7 +424,7 @@ fn unavailable(c: &Config, why: &str) -> Point {
         wall_time_s: f64::NAN,
         error_m: f64::NAN,
         on_front: false,
-        note: format!("not available: {why}"),
+        note: why.to_string(),
     }
 }
 
@@ -456,10 +466,10 @@ fn reference(
                 let c = config(size);
                 let sub = dir.join(format!("reference-{size}"));
                 let label = format!("{} reference {}", scene.name, c.label());
-                let s = run_into(&c.scene(scene, interval)?, &sub, bar, *tick * 1000, &label)?;
+                let o = run_into(&c.scene(scene, interval)?, &sub, bar, *tick * 1000, &label)?;
                 *tick += 1;
-                if s.iter().any(|s| s.status != "ok") {
-                    anyhow::bail!("{label}: the reference run failed");
+                if o.iter().any(|o| o.ok().is_none()) {
+                    anyhow::bail!("{label}: the reference run failed: {:?}", o[0].error);
                 }
                 tips.push(Tip::load(&sub.join("equivalent"))?);
             }

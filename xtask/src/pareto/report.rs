@@ -113,7 +113,7 @@ impl CaseReport {
         } else {
             format!(
                 "{} ({analysis}): speed-up over the fine model at equal error: not available \
-                 (the fine model did not run).{eq_part}",
+                 (no fine-model run finished).{eq_part}",
                 scene.name
             )
         };
@@ -167,7 +167,8 @@ impl CaseReport {
             y_label: "error (m)".into(),
             series,
             log: true,
-            note: fine_missing.then(|| "fine model: not available".into()),
+            note: fine_missing
+                .then(|| "fine model: some runs not available (see the table)".into()),
             ..Default::default()
         }
     }
