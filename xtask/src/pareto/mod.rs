@@ -116,6 +116,10 @@ impl Config {
             "el"
         };
         let mut s = format!("{} {} {unit}", self.model.name(), self.size);
+        if self.model == Model::Fine {
+            // The fine model integrates explicitly at its own stable step in dynamics.
+            return s;
+        }
         if let Some(i) = &self.integrator {
             s += &format!(", {i}");
             s += &match self.time_step {
@@ -322,7 +326,7 @@ pub fn run(args: &ParetoArgs) -> anyhow::Result<()> {
                 continue;
             }
             let cfg_scene = c.scene(scene, None)?;
-            let run_dir = dir.join(c.label().replace([' ', ',', '='], "_"));
+            let run_dir = dir.join(c.label().replace([' ', ',', '=', '/'], "_"));
             let mut times = Vec::new();
             let mut last = None;
             let mut failure = None;
@@ -444,9 +448,8 @@ fn reference(
             let note = format!(
                 "the elastica shooting solution with the scene's section law (SPEC 7; \
                  independent of every discretisation, its own position error estimate {:.1e} \
-                 m). The equivalent beam approaches it up to the tension-modelling floor \
-                 described in the README; the traditional and fine models differ from it by \
-                 their modelling as well",
+                 m), which the equivalent beam converges to as elements are added; the \
+                 traditional and fine models differ from it by their modelling as well",
                 r.error.position
             );
             Ok((Reference::Elastica(Box::new(r)), note))
@@ -541,6 +544,6 @@ mod tests {
         let s = fine.scene(&scene, None).unwrap();
         assert_eq!(s.models.fine.unwrap().segments_per_wire, fine.size);
         assert!(s.models.equivalent.is_none());
-        assert_eq!(fine.label(), "fine 20 seg/wire, generalized-alpha h=5e-4");
+        assert_eq!(fine.label(), "fine 20 seg/wire");
     }
 }
