@@ -3,7 +3,7 @@
 
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// A CSV file being written: a header, then rows of numbers or text.
 pub struct Csv {
@@ -85,4 +85,76 @@ pub fn write_vtk_polyline(
         }
     }
     w.flush()
+}
+
+/// The per-frame files of a dynamic run in a model folder: `tip.csv`, `energy.csv` (the SPEC 6
+/// columns, then any extra ones) and, if asked, `vtk/centerline_NNNNN.vtk`.
+pub struct FrameFiles {
+    tip: (Csv, PathBuf),
+    energy: (Csv, PathBuf),
+    vtk: Option<PathBuf>,
+    frame: usize,
+}
+
+impl FrameFiles {
+    /// Creates the files in `dir`; `extra` names energy columns after `total`. Errors name
+    /// the file.
+    pub fn create(dir: &Path, vtk: bool, extra: &[&str]) -> Result<FrameFiles, String> {
+        let io = |p: &Path| {
+            let p = p.display().to_string();
+            move |e: io::Error| format!("writing {p}: {e}")
+        };
+        let pt = dir.join("tip.csv");
+        let tip = Csv::create(&pt, &["t", "x", "y", "z", "vx", "vy", "vz"]).map_err(io(&pt))?;
+        let pe = dir.join("energy.csv");
+        let mut header = vec!["t", "kinetic", "gravity", "elastic", "dissipated", "total"];
+        header.extend_from_slice(extra);
+        let energy = Csv::create(&pe, &header).map_err(io(&pe))?;
+        let vtk = if vtk {
+            let d = dir.join("vtk");
+            std::fs::create_dir_all(&d).map_err(io(&d))?;
+            Some(d)
+        } else {
+            None
+        };
+        Ok(FrameFiles {
+            tip: (tip, pt),
+            energy: (energy, pe),
+            vtk,
+            frame: 0,
+        })
+    }
+
+    /// Writes the frame at time `t` (s): tip position `x` (m) and velocity `v` (m/s), the
+    /// energies in the header's order after `t` (J), and, with VTK output, the centreline
+    /// `centreline()` yields (m).
+    pub fn write(
+        &mut self,
+        t: f64,
+        x: [f64; 3],
+        v: [f64; 3],
+        energies: &[f64],
+        centreline: impl FnOnce() -> Vec<[f64; 3]>,
+    ) -> io::Result<()> {
+        self.tip.0.row(&[t, x[0], x[1], x[2], v[0], v[1], v[2]])?;
+        let mut row = Vec::with_capacity(1 + energies.len());
+        row.push(t);
+        row.extend_from_slice(energies);
+        self.energy.0.row(&row)?;
+        if let Some(d) = &self.vtk {
+            let path = d.join(format!("centerline_{:05}.vtk", self.frame));
+            write_vtk_polyline(&path, &format!("t = {t} s"), &centreline(), &[])?;
+        }
+        self.frame += 1;
+        Ok(())
+    }
+
+    /// Flushes the CSV files; an error names the file.
+    pub fn finish(self) -> Result<(), String> {
+        for (csv, path) in [self.tip, self.energy] {
+            csv.finish()
+                .map_err(|e| format!("writing {}: {e}", path.display()))?;
+        }
+        Ok(())
+    }
 }

@@ -10,7 +10,7 @@ use strand_ancf::dynamics::{DynamicOptions, Scheme, run_dynamic};
 use strand_ancf::statics::{StaticOptions, solve_static};
 use strand_core::{LawKind, SectionLaw, WireState};
 
-use crate::output::{Csv, number, write_vtk_polyline};
+use crate::output::{Csv, FrameFiles, number};
 use crate::scene::{Analysis, BeamModel, End, IntegratorKind, Scene, SupportKind};
 
 /// Energy balance error, relative to the largest kinetic energy, above which a dynamic run
@@ -302,6 +302,16 @@ fn run_beam(
             })
         }
     };
+    finish(summary, result, &dir)
+}
+
+/// Records the outcome `result` of a model's run in `summary`, writes `dir/summary.json` and
+/// returns the summary, or the solver's failure (the files hold what was computed).
+pub(crate) fn finish(
+    mut summary: RunSummary,
+    result: Result<(), String>,
+    dir: &Path,
+) -> Result<RunSummary, RunError> {
     if let Err(message) = &result {
         summary.status = "failed".into();
         summary.error = Some(message.clone());
@@ -312,7 +322,7 @@ fn run_beam(
     match result {
         Ok(()) => Ok(summary),
         Err(message) => Err(RunError::Solve {
-            model: name.to_string(),
+            model: summary.model,
             message,
             dir: dir.display().to_string(),
         }),
@@ -432,28 +442,12 @@ fn run_dynamics(
     summary: &mut RunSummary,
     progress: &mut dyn FnMut(f64),
 ) -> Result<(), String> {
-    let io = |p: &Path| {
-        let p = p.display().to_string();
-        move |e: std::io::Error| format!("writing {p}: {e}")
-    };
-    let pt = dir.join("tip.csv");
-    let mut tip = Csv::create(&pt, &["t", "x", "y", "z", "vx", "vy", "vz"]).map_err(io(&pt))?;
-    let pe = dir.join("energy.csv");
-    let mut energy = Csv::create(
-        &pe,
-        &["t", "kinetic", "gravity", "elastic", "dissipated", "total"],
-    )
-    .map_err(io(&pe))?;
-    let vtk_dir = dir.join("vtk");
-    if vtk {
-        std::fs::create_dir_all(&vtk_dir).map_err(io(&vtk_dir))?;
-    }
+    let mut files = FrameFiles::create(dir, vtk, &[])?;
     let n = beam.spec().elements;
     let nd = beam.node_coords();
     let k = n * nd;
     // Velocity of the tip: the last node's position coordinates.
     let dim = nd / 2;
-    let mut frame = 0usize;
     let mut write_error: Option<String> = None;
     let mut last_q = beam.reference().to_vec();
     let mut last_points: Vec<PointState> = Vec::new();
@@ -463,44 +457,29 @@ fn run_dynamics(
             return;
         }
         let e = &f.energies;
-        let mut rows = || -> std::io::Result<()> {
-            let (mut x, mut v) = ([0.0; 3], [0.0; 3]);
-            x[..dim].copy_from_slice(&f.q[k..k + dim]);
-            v[..dim].copy_from_slice(&f.v[k..k + dim]);
-            tip.row(&[f.t, x[0], x[1], x[2], v[0], v[1], v[2]])?;
-            energy.row(&[
-                f.t,
-                e.kinetic,
-                e.gravity,
-                e.elastic,
-                e.dissipated,
-                e.total(),
-            ])?;
-            if vtk {
-                let samples = 4 * n;
-                let pts: Vec<[f64; 3]> = (0..=samples)
-                    .map(|i| {
-                        beam.sample(f.q, beam.length() * i as f64 / samples as f64)
-                            .0
-                    })
-                    .collect();
-                let path = vtk_dir.join(format!("centerline_{frame:05}.vtk"));
-                write_vtk_polyline(&path, &format!("t = {} s", f.t), &pts, &[])?;
-            }
-            Ok(())
+        let (mut x, mut v) = ([0.0; 3], [0.0; 3]);
+        x[..dim].copy_from_slice(&f.q[k..k + dim]);
+        v[..dim].copy_from_slice(&f.v[k..k + dim]);
+        let energies = [e.kinetic, e.gravity, e.elastic, e.dissipated, e.total()];
+        let centreline = || {
+            let samples = 4 * n;
+            (0..=samples)
+                .map(|i| {
+                    beam.sample(f.q, beam.length() * i as f64 / samples as f64)
+                        .0
+                })
+                .collect()
         };
-        if let Err(err) = rows() {
+        if let Err(err) = files.write(f.t, x, v, &energies, centreline) {
             write_error = Some(format!("writing results: {err}"));
         }
-        frame += 1;
         last_q.copy_from_slice(f.q);
         last_points.clear();
         last_points.extend_from_slice(f.points);
         progress(f.t / opts.duration);
     });
     summary.wall_time_s = t0.elapsed().as_secs_f64();
-    tip.finish().map_err(io(&pt))?;
-    energy.finish().map_err(io(&pe))?;
+    files.finish()?;
     if let Some(e) = write_error {
         return Err(e);
     }

@@ -27,8 +27,8 @@ use strand_fine::{
     ContactOptions, ContactState, Discretisation, FineModel, Integrator, ModelState, WireLoads,
 };
 
-use crate::output::{Csv, number, write_vtk_polyline};
-use crate::run::{RunError, RunOptions, RunSummary, io_err};
+use crate::output::{Csv, FrameFiles, number};
+use crate::run::{RunError, RunOptions, RunSummary, finish, io_err};
 use crate::scene::{Analysis, End, IntegratorKind, Scene, SupportKind};
 
 /// Safety factor on the explicit stable step of the fine model.
@@ -199,21 +199,7 @@ pub(crate) fn run_fine(
             .unwrap_or_default())
     .into();
     let result = result.and(written);
-    if let Err(message) = &result {
-        summary.status = "failed".into();
-        summary.error = Some(message.clone());
-    }
-    let path = dir.join("summary.json");
-    let text = serde_json::to_string_pretty(&summary).expect("summary serializes");
-    std::fs::write(&path, text + "\n").map_err(io_err(&path))?;
-    match result {
-        Ok(()) => Ok(summary),
-        Err(message) => Err(RunError::Solve {
-            model: name.to_string(),
-            message,
-            dir: dir.display().to_string(),
-        }),
-    }
+    finish(summary, result, &dir)
 }
 
 fn run_static(
@@ -258,32 +244,11 @@ fn run_dynamic(
     summary: &mut RunSummary,
     progress: &mut dyn FnMut(f64),
 ) -> Result<(), String> {
-    let io = |p: &Path| {
-        let p = p.display().to_string();
-        move |e: std::io::Error| format!("writing {p}: {e}")
-    };
-    let pt = dir.join("tip.csv");
-    let mut tip = Csv::create(&pt, &["t", "x", "y", "z", "vx", "vy", "vz"]).map_err(io(&pt))?;
-    let pe = dir.join("energy.csv");
-    let mut energy = Csv::create(
-        &pe,
-        &[
-            "t",
-            "kinetic",
-            "gravity",
-            "elastic",
-            "dissipated",
-            "total",
-            "kinetic_rotation",
-            "contact",
-            "friction_stored",
-        ],
-    )
-    .map_err(io(&pe))?;
-    let vtk_dir = dir.join("vtk");
-    if vtk {
-        std::fs::create_dir_all(&vtk_dir).map_err(io(&vtk_dir))?;
-    }
+    let mut files = FrameFiles::create(
+        dir,
+        vtk,
+        &["kinetic_rotation", "contact", "friction_stored"],
+    )?;
     let core = &model.wires[0].chain;
     let last = core.len() - 1;
     let tip_offset = core.segments[last].end_offset();
@@ -295,35 +260,26 @@ fn run_dynamic(
     let mut int = Integrator::new(model, state, dt);
     let e0 = int.energies(model, state);
     let (mut err, mut max_kinetic) = (0.0f64, 0.0f64);
-    let mut frame = 0usize;
     let mut write = |t: f64, state: &ModelState, e: &fine::Energies| -> std::io::Result<()> {
         let x = rot * state.wires[0].poses[last].point(&tip_offset);
         let v = rot * fine::dynamics::point_velocity(model, state, 0, last, &tip_offset);
-        tip.row(&[t, x.x, x.y, x.z, v.x, v.y, v.z])?;
-        let kinetic = e.kinetic_translation + e.kinetic_rotation;
-        let elastic = e.spring + e.contact + e.friction_stored;
-        energy.row(&[
-            t,
-            kinetic,
+        let energies = [
+            e.kinetic_translation + e.kinetic_rotation,
             e.gravity,
-            elastic,
+            e.spring + e.contact + e.friction_stored,
             e.friction_work,
             e.balance(),
             e.kinetic_rotation,
             e.contact,
             e.friction_stored,
-        ])?;
-        if vtk {
-            let pts: Vec<[f64; 3]> = model
+        ];
+        files.write(t, x.into(), v.into(), &energies, || {
+            model
                 .core_centreline(state)
                 .iter()
                 .map(|p| (rot * p).into())
-                .collect();
-            let path = vtk_dir.join(format!("centerline_{frame:05}.vtk"));
-            write_vtk_polyline(&path, &format!("t = {t} s"), &pts, &[])?;
-        }
-        frame += 1;
-        Ok(())
+                .collect()
+        })
     };
     write(0.0, state, &e0).map_err(|e| format!("writing results: {e}"))?;
     let t0 = Instant::now();
@@ -344,8 +300,7 @@ fn run_dynamic(
     }
     summary.wall_time_s = t0.elapsed().as_secs_f64();
     summary.steps = int.steps as usize;
-    tip.finish().map_err(io(&pt))?;
-    energy.finish().map_err(io(&pe))?;
+    files.finish()?;
     summary.energy_balance_error = Some(err);
     summary.energy_balance_relative = Some(err / max_kinetic.max(f64::MIN_POSITIVE));
     summary.dissipated = Some(state.friction_work);
