@@ -212,9 +212,7 @@ pub fn steel_verlet_forced_step(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
 }
 
 fn summary_status(dir: &Path) -> anyhow::Result<String> {
-    let p = dir.join("summary.json");
-    let text = std::fs::read_to_string(&p).with_context(|| format!("reading {}", p.display()))?;
-    let v: serde_json::Value = serde_json::from_str(&text)?;
+    let v = crate::validate::results::summary(dir)?;
     Ok(v["status"].as_str().unwrap_or("").to_string())
 }
 

@@ -7,7 +7,7 @@ use std::path::Path;
 use anyhow::{Context, bail};
 
 use super::report::{Bound, Row};
-use super::results::{Centerline, Energy, Table};
+use super::results::{Centerline, Energy, Table, summary};
 use super::tolerances::DistanceTol;
 
 /// Differences between two runs.
@@ -97,15 +97,11 @@ pub fn compare(a: &Path, b: &Path, dynamic: bool) -> anyhow::Result<Comparison> 
 
 /// The tip position at the end from a model folder's `summary.json` (m).
 fn summary_tip(dir: &Path) -> anyhow::Result<[f64; 3]> {
-    let path = dir.join("summary.json");
-    let text =
-        std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
-    let v: serde_json::Value =
-        serde_json::from_str(&text).with_context(|| format!("parsing {}", path.display()))?;
+    let v = summary(dir)?;
     let tip = v["tip"]
         .as_array()
         .filter(|a| a.len() == 3)
-        .with_context(|| format!("{}: no tip", path.display()))?;
+        .with_context(|| format!("{}: no tip", dir.join("summary.json").display()))?;
     let mut out = [0.0; 3];
     for (o, t) in out.iter_mut().zip(tip) {
         *o = t.as_f64().unwrap_or(f64::NAN);

@@ -61,6 +61,14 @@ impl Table {
     }
 }
 
+/// A model folder's `summary.json` as JSON.
+pub fn summary(dir: &Path) -> anyhow::Result<serde_json::Value> {
+    let path = dir.join("summary.json");
+    let text =
+        std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
+    serde_json::from_str(&text).with_context(|| format!("parsing {}", path.display()))
+}
+
 /// The centreline of a run at its integration points.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Centerline {
