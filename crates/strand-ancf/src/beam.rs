@@ -471,6 +471,7 @@ impl Beam {
 
     /// Tangent of element `e` alone at coordinates `q`, from a state without slip (for the
     /// stable-step bound).
+    #[cfg(test)]
     pub(crate) fn element_tangent(&self, e: usize, q: &[f64]) -> Result<DMatrix<f64>, BeamError> {
         let rule = &self.rules[e];
         let ws = if self.law.kind().has_state() {

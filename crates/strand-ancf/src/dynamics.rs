@@ -2,8 +2,8 @@
 //! eliminated), from rest in the reference configuration (SPEC 5).
 //!
 //! * Stoermer-Verlet (the paper's integrator), explicit: the constant mass matrix is factored
-//!   once; the stable step is bounded from the element eigenvalues (the largest frequency of
-//!   an assembly is below the largest of its elements, for consistent mass).
+//!   once; the stable step comes from the largest eigenvalue of the assembled system
+//!   ([`stable_step`], Lanczos on `M^-1 K`).
 //! * Generalized-alpha (Chung-Hulbert parameters in the Arnold-Bruels form), implicit: Newton
 //!   on `S = beta' M + K` with the analytic tangent and a band LU. Spectral radius 1 gives the
 //!   trapezoidal rule (no numerical damping).
@@ -14,11 +14,11 @@
 //! point (midpoint rule over each accepted step). Their sum stays at its initial value up to
 //! the integrator's own error, which is reported as the balance error.
 
-use nalgebra::SymmetricEigen;
-
 use crate::band::{BandMatrix, BandSolver};
 use crate::beam::{Beam, BeamError, PointState};
 use crate::statics::{add_free, gather_free};
+
+pub use crate::stability::stable_step;
 
 /// Time integrator.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -186,28 +186,6 @@ pub enum DynamicError {
     /// Invalid settings.
     #[error("{0}")]
     Setup(String),
-}
-
-/// Estimated stable step of Stoermer-Verlet, 2 / omega_max, with omega_max the largest
-/// element frequency at the reference configuration (all wires sticking: the stiffest state).
-pub fn stable_step(beam: &Beam) -> Result<f64, BeamError> {
-    let me = beam.element_mass();
-    let chol = me
-        .cholesky()
-        .ok_or_else(|| BeamError::Setup("mass matrix not positive".into()))?;
-    let linv = chol
-        .l()
-        .try_inverse()
-        .ok_or_else(|| BeamError::Setup("mass matrix not invertible".into()))?;
-    let mut omega2: f64 = 0.0;
-    for e in 0..beam.spec().elements {
-        let k = beam.element_tangent(e, beam.reference())?;
-        let sym = (&k + k.transpose()) * 0.5;
-        let a = &linv * sym * linv.transpose();
-        let eig = SymmetricEigen::new(a);
-        omega2 = omega2.max(eig.eigenvalues.max());
-    }
-    Ok(2.0 / omega2.sqrt())
 }
 
 /// Bookkeeping shared by both integrators.
@@ -535,6 +513,7 @@ fn alpha_step(
     let mut fresh = w.factor_h != h;
     let mut prev = f64::INFINITY;
     let mut relax: f64 = 1.0;
+    let mut prev_slipping = usize::MAX;
     while iterations < opts.max_iterations {
         iterations += 1;
         let k = fresh.then_some(&mut w.k);
@@ -577,7 +556,12 @@ fn alpha_step(
         // between the two sets. A stall with a stale matrix only asks for a fresh one.
         if iterations > 1 && fresh && dn >= 0.9 * prev {
             relax = (0.5 * relax).max(1.0 / 16.0);
+        } else if relax < 1.0 && ev.slipping == prev_slipping && dn < 0.9 * prev {
+            // The slipping set has settled and the correction shrinks: back to full Newton
+            // steps (a relaxed step on a settled set only contracts by 1 - relax).
+            relax = 1.0;
         }
+        prev_slipping = ev.slipping;
         add_free(beam, &mut st.q, -relax, &w.dq);
         for i in 0..nf {
             st.vf[i] -= relax * gamma_p * w.dq[i];

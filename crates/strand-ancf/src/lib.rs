@@ -7,7 +7,8 @@
 //! * [`spatial`]: spatial element (12 coordinates, eq. (24)), strain and curvature vector in
 //!   a section frame carried by the minimal rotation, with analytic gradients and Hessians;
 //! * [`mass`]: constant consistent mass matrix (eq. (44));
-//! * [`load`]: generalized force of a uniform distributed load (eq. (45)).
+//! * [`load`]: generalized force of a uniform distributed load (eq. (45));
+//! * [`dynamics::stable_step`]: the explicit scheme's stable step from the assembled system.
 //!
 //! Kinematic derivatives are given with respect to the local variables `(r', r'')` at a
 //! point (4 values planar, 6 spatial) and mapped to the element coordinates with the
@@ -31,6 +32,7 @@ pub mod planar;
 mod scatter;
 pub mod shape;
 pub mod spatial;
+mod stability;
 pub mod statics;
 
 pub use error::{AncfError, MIN_ALIGNMENT, MIN_STRETCH};
