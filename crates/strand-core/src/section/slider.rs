@@ -48,6 +48,7 @@ pub(crate) struct SliderForce {
 /// `cap_neg >= 0` the friction limits of the force (N), `paper_factor` = cos^2(alpha) (the
 /// ratio of the slip force to the stick force at the `paper` law's switch, eq. (23)), `slip`
 /// the committed slip strain (hysteretic law only).
+#[inline(always)]
 pub(crate) fn slider(
     kind: LawKind,
     k: f64,
