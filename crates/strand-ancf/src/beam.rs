@@ -427,24 +427,24 @@ impl Beam {
             let tr = &mut trial[s0.min(tl)..s1.min(tl)];
             let pts = points.as_deref_mut().map(|p| &mut p[p0..p0 + np]);
             let want_k = tangent.is_some();
-            let (ke, ev): (&[f64], Evaluation) = match self.spec.element {
+            let (ke, ev, sym): (&[f64], Evaluation, bool) = match self.spec.element {
                 ElementKind::Planar => {
                     let qe = self.planar_coords(q, e);
-                    let (f, ev) =
+                    let (f, ev, sym) =
                         self.element_planar(e, rule, &qe, sl, tr, want_k.then_some(&mut kp), pts)?;
                     for a in 0..8 {
                         force[e * nd + a] += f[a];
                     }
-                    (kp.as_slice(), ev)
+                    (kp.as_slice(), ev, sym)
                 }
                 ElementKind::Spatial => {
                     let qe = self.spatial_coords(q, e);
-                    let (f, ev) =
+                    let (f, ev, sym) =
                         self.element_spatial(e, rule, &qe, sl, tr, want_k.then_some(&mut ks), pts)?;
                     for a in 0..12 {
                         force[e * nd + a] += f[a];
                     }
-                    (ks.as_slice(), ev)
+                    (ks.as_slice(), ev, sym)
                 }
             };
             p0 += np;
@@ -454,6 +454,26 @@ impl Beam {
             if let Some(t) = tangent.as_deref_mut() {
                 // Element matrices are column-major, 2 nd x 2 nd.
                 let m = 2 * nd;
+                if sym {
+                    // Mirror the lower triangle: the global matrix is then exactly symmetric
+                    // (each mirrored pair sums the same values in the same order), which lets
+                    // the solver use LDL^T.
+                    for b in 0..m {
+                        let Some(ib) = self.free_index[e * nd + b] else {
+                            continue;
+                        };
+                        for a in b..m {
+                            if let Some(ia) = self.free_index[e * nd + a] {
+                                let v = ke[a + b * m];
+                                t.add(ia, ib, v);
+                                if a != b {
+                                    t.add(ib, ia, v);
+                                }
+                            }
+                        }
+                    }
+                    continue;
+                }
                 for b in 0..m {
                     let Some(ib) = self.free_index[e * nd + b] else {
                         continue;
@@ -507,7 +527,7 @@ impl Beam {
         trial: &mut [f64],
         mut tangent: Option<&mut PlanarMatrix>,
         mut points: Option<&mut [PointState]>,
-    ) -> Result<(PlanarVector, Evaluation), BeamError> {
+    ) -> Result<(PlanarVector, Evaluation, bool), BeamError> {
         let kin = |source| BeamError::Kinematics { element: e, source };
         let ea = self.law.axial_stiffness();
         let mut f = PlanarVector::zeros();
@@ -515,6 +535,8 @@ impl Beam {
             t.fill(0.0);
         }
         let mut ev = Evaluation::default();
+        // Whether the tangent is symmetric: only d M / d eps breaks the symmetry.
+        let mut symmetric = true;
         // Axial points: reduced quadrature.
         let mut eps_a = [0.0; AXIAL_POINTS];
         let mut eps_q = [PlanarVector::zeros(); AXIAL_POINTS];
@@ -604,6 +626,7 @@ impl Beam {
                 planar::add_gradient(&mut f, w, &bp.qp.row, &s2.force(&sec));
                 planar::add_hessian(t, w, &bp.qp.row, &s2.tangent(&sec));
                 if r.moment_strain != 0.0 {
+                    symmetric = false;
                     // d M / d eps_bar couples the curvature here to the axial points.
                     let gk = planar::scatter_gradient(&bp.qp.row, &s2.first.kappa_grad);
                     let mut ge = PlanarVector::zeros();
@@ -649,7 +672,7 @@ impl Beam {
                 quantity: "elastic force",
             });
         }
-        Ok((f, ev))
+        Ok((f, ev, symmetric))
     }
 }
 
@@ -667,7 +690,7 @@ impl Beam {
         trial: &mut [f64],
         mut tangent: Option<&mut SpatialMatrix>,
         mut points: Option<&mut [PointState]>,
-    ) -> Result<(SpatialVector, Evaluation), BeamError> {
+    ) -> Result<(SpatialVector, Evaluation, bool), BeamError> {
         let kin = |source| BeamError::Kinematics { element: e, source };
         let frame = self.frame.as_ref().expect("spatial beams have a frame");
         let ea = self.law.axial_stiffness();
@@ -676,6 +699,9 @@ impl Beam {
             t.fill(0.0);
         }
         let mut ev = Evaluation::default();
+        // Whether the tangent is symmetric: d M / d eps and a non-symmetric d M / d kappa break
+        // the symmetry.
+        let mut symmetric = true;
         let mut eps_a = [0.0; AXIAL_POINTS];
         let mut eps_q = [SpatialVector::zeros(); AXIAL_POINTS];
         let mut eps_h = [nalgebra::Matrix6::<f64>::zeros(); AXIAL_POINTS];
@@ -762,7 +788,9 @@ impl Beam {
                 };
                 spatial::add_gradient(&mut f, w, &bp.qp.row, &s2.force(&sec));
                 spatial::add_hessian(t, w, &bp.qp.row, &s2.tangent(&sec));
+                symmetric &= r.moment_curvature[0][1] == r.moment_curvature[1][0];
                 if r.moment_strain != [0.0; 2] {
+                    symmetric = false;
                     let mut ge = SpatialVector::zeros();
                     for j in 0..AXIAL_POINTS {
                         ge += eps_q[j] * bp.interp[j];
@@ -811,7 +839,7 @@ impl Beam {
                 quantity: "elastic force",
             });
         }
-        Ok((f, ev))
+        Ok((f, ev, symmetric))
     }
 }
 
