@@ -24,7 +24,7 @@ use crate::band::BandMatrix;
 use crate::error::AncfError;
 use crate::load::{planar_gravity, spatial_gravity};
 use crate::mass::{planar_mass, spatial_mass};
-use crate::planar::{self, PlanarCoords, PlanarMatrix, PlanarPoint, PlanarSection, PlanarVector};
+use crate::planar::{self, PlanarAxial, PlanarCoords, PlanarMatrix, PlanarPoint, PlanarVector};
 use crate::shape::{QuadraturePoint, ShapeRow, element_quadrature, gauss_legendre};
 use crate::spatial::{
     self, SectionFrame, SpatialCoords, SpatialMatrix, SpatialPoint, SpatialSection, SpatialVector,
@@ -516,7 +516,9 @@ impl Beam {
         })
     }
 
-    /// Forces (and tangent) of one planar element.
+    /// Forces (and tangent) of one planar element. The symmetric part of the tangent is built
+    /// on and below the diagonal and mirrored; the coupling `d M / d eps` (the only
+    /// non-symmetric term) is added after.
     #[allow(clippy::too_many_arguments)]
     fn element_planar(
         &self,
@@ -535,31 +537,28 @@ impl Beam {
             t.fill(0.0);
         }
         let mut ev = Evaluation::default();
-        // Whether the tangent is symmetric: only d M / d eps breaks the symmetry.
-        let mut symmetric = true;
+        // The non-symmetric part of the tangent, if any.
+        let mut unsym: Option<PlanarMatrix> = None;
         // Axial points: reduced quadrature.
         let mut eps_a = [0.0; AXIAL_POINTS];
         let mut eps_q = [PlanarVector::zeros(); AXIAL_POINTS];
-        let mut eps_h = [nalgebra::Matrix4::<f64>::zeros(); AXIAL_POINTS];
+        let mut axial = [PlanarAxial {
+            eps: 0.0,
+            tangent: Vector2::zeros(),
+            stretch: 1.0,
+        }; AXIAL_POINTS];
         for (j, ap) in rule.axial.iter().enumerate() {
-            let pt = PlanarPoint::at(qe, &ap.row);
-            let sec = |eps: f64| PlanarSection {
-                n: ea * eps,
-                dn_deps: ea,
-                ..Default::default()
-            };
+            let a = PlanarPoint::at(qe, &ap.row).axial().map_err(kin)?;
+            axial[j] = a;
+            eps_a[j] = a.eps;
+            let n = ea * a.eps;
+            let ge = Vector4::new(a.tangent.x, a.tangent.y, 0.0, 0.0);
+            planar::add_gradient(&mut f, ap.weight, &ap.row, &(ge * n));
+            eps_q[j] = planar::scatter_gradient(&ap.row, &ge);
             if let Some(t) = tangent.as_deref_mut() {
-                let s2 = pt.second().map_err(kin)?;
-                let s = sec(s2.first.eps);
-                eps_a[j] = s2.first.eps;
-                planar::add_gradient(&mut f, ap.weight, &ap.row, &s2.force(&s));
-                planar::add_hessian(t, ap.weight, &ap.row, &s2.tangent(&s));
-                eps_q[j] = planar::scatter_gradient(&ap.row, &s2.first.eps_grad);
-                eps_h[j] = s2.eps_hess;
-            } else {
-                let s1 = pt.first().map_err(kin)?;
-                eps_a[j] = s1.eps;
-                planar::add_gradient(&mut f, ap.weight, &ap.row, &s1.force(&sec(s1.eps)));
+                // N eps_yy + EA eps_y eps_y^T: only the r' block.
+                let h = a.hessian() * n + a.tangent * a.tangent.transpose() * ea;
+                planar::add_hessian_aa_lower(t, ap.weight, &ap.row, &h);
             }
             ev.energy += ap.weight * 0.5 * ea * eps_a[j] * eps_a[j];
         }
@@ -567,32 +566,23 @@ impl Beam {
         // there is the mean of the axial points.
         {
             let c = HOURGLASS * ea * self.element_length;
-            let pt = PlanarPoint::at(qe, &rule.mid);
+            let a = PlanarPoint::at(qe, &rule.mid).axial().map_err(kin)?;
             let mean = 1.0 / AXIAL_POINTS as f64;
-            if let Some(t) = tangent.as_deref_mut() {
-                let s2 = pt.second().map_err(kin)?;
-                let d = s2.first.eps - mean * eps_a.iter().sum::<f64>();
-                let mut g = planar::scatter_gradient(&rule.mid, &s2.first.eps_grad);
-                for eq in &eps_q {
-                    g -= eq * mean;
-                }
-                f += g * (c * d);
-                t.ger(c, &g, &g, 1.0);
-                planar::add_hessian(t, c * d, &rule.mid, &s2.eps_hess);
-                for (ap, hq) in rule.axial.iter().zip(&eps_h) {
-                    planar::add_hessian(t, -c * d * mean, &ap.row, hq);
-                }
-                ev.energy += 0.5 * c * d * d;
-            } else {
-                let s1 = pt.first().map_err(kin)?;
-                let d = s1.eps - mean * eps_a.iter().sum::<f64>();
-                planar::add_gradient(&mut f, c * d, &rule.mid, &s1.eps_grad);
-                for ap in &rule.axial {
-                    let e1 = PlanarPoint::at(qe, &ap.row).first().map_err(kin)?;
-                    planar::add_gradient(&mut f, -c * d * mean, &ap.row, &e1.eps_grad);
-                }
-                ev.energy += 0.5 * c * d * d;
+            let d = a.eps - mean * eps_a.iter().sum::<f64>();
+            let ge = Vector4::new(a.tangent.x, a.tangent.y, 0.0, 0.0);
+            let mut g = planar::scatter_gradient(&rule.mid, &ge);
+            for eq in &eps_q {
+                g -= eq * mean;
             }
+            f += g * (c * d);
+            if let Some(t) = tangent.as_deref_mut() {
+                t.ger(c, &g, &g, 1.0);
+                planar::add_hessian_aa_lower(t, c * d, &rule.mid, &a.hessian());
+                for (ap, aj) in rule.axial.iter().zip(&axial) {
+                    planar::add_hessian_aa_lower(t, -c * d * mean, &ap.row, &aj.hessian());
+                }
+            }
+            ev.energy += 0.5 * c * d * d;
         }
         // Bending points.
         let ws = if self.law.kind().has_state() {
@@ -615,32 +605,39 @@ impl Beam {
             let kappa;
             let r;
             if let Some(t) = tangent.as_deref_mut() {
-                let s2 = pt.second().map_err(kin)?;
-                kappa = s2.first.kappa;
+                let b2 = pt.bending_second().map_err(kin)?;
+                kappa = b2.kappa;
                 r = self.law.planar(&bp.station, eps, kappa, sl, tr);
-                let sec = PlanarSection {
-                    m: r.moment,
-                    dm_dkappa: r.moment_curvature,
-                    ..Default::default()
-                };
-                planar::add_gradient(&mut f, w, &bp.qp.row, &s2.force(&sec));
-                planar::add_hessian(t, w, &bp.qp.row, &s2.tangent(&sec));
+                planar::add_gradient(&mut f, w, &bp.qp.row, &(b2.grad * r.moment));
+                // M kappa_yy + M_kappa kappa_y kappa_y^T (kappa_yy has no r'' r'' block).
+                let mut h = b2.grad * b2.grad.transpose() * r.moment_curvature;
+                for j in 0..2 {
+                    for i in 0..2 {
+                        h[(i, j)] += b2.hess_aa[(i, j)] * r.moment;
+                        h[(i, 2 + j)] += b2.hess_ab[(i, j)] * r.moment;
+                        h[(2 + j, i)] += b2.hess_ab[(i, j)] * r.moment;
+                    }
+                }
+                planar::add_hessian_lower(t, w, &bp.qp.row, &h);
                 if r.moment_strain != 0.0 {
-                    symmetric = false;
                     // d M / d eps_bar couples the curvature here to the axial points.
-                    let gk = planar::scatter_gradient(&bp.qp.row, &s2.first.kappa_grad);
+                    let gk = planar::scatter_gradient(&bp.qp.row, &b2.grad);
                     let mut ge = PlanarVector::zeros();
                     for j in 0..AXIAL_POINTS {
                         ge += eps_q[j] * bp.interp[j];
                     }
-                    t.ger(w * r.moment_strain, &gk, &ge, 1.0);
+                    unsym.get_or_insert_with(PlanarMatrix::zeros).ger(
+                        w * r.moment_strain,
+                        &gk,
+                        &ge,
+                        1.0,
+                    );
                 }
             } else {
-                let s1 = pt.first().map_err(kin)?;
-                kappa = s1.kappa;
+                let (k, grad) = pt.bending_first().map_err(kin)?;
+                kappa = k;
                 r = self.law.planar(&bp.station, eps, kappa, sl, tr);
-                let local: Vector4<f64> = s1.kappa_grad * r.moment;
-                planar::add_gradient(&mut f, w, &bp.qp.row, &local);
+                planar::add_gradient(&mut f, w, &bp.qp.row, &(grad * r.moment));
             }
             if !(r.moment.is_finite() && r.moment_curvature.is_finite()) {
                 return Err(BeamError::NonFinite {
@@ -665,6 +662,12 @@ impl Beam {
                 };
             }
         }
+        if let Some(t) = tangent {
+            planar::mirror_lower(t);
+            if let Some(u) = &unsym {
+                *t += u;
+            }
+        }
         if !f.iter().all(|v| v.is_finite()) {
             return Err(BeamError::NonFinite {
                 element: e,
@@ -672,7 +675,7 @@ impl Beam {
                 quantity: "elastic force",
             });
         }
-        Ok((f, ev, symmetric))
+        Ok((f, ev, unsym.is_none()))
     }
 }
 
