@@ -80,8 +80,34 @@ impl BandMatrix {
 
     /// `y = A x`.
     pub fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
+        match self.kl + self.ku + 1 {
+            15 => self.mul_vec_fixed::<15>(x, y),
+            23 => self.mul_vec_fixed::<23>(x, y),
+            _ => self.mul_vec_rows(0, self.n, x, y),
+        }
+    }
+
+    /// `y = A x` with the full rows (`kl + ku + 1 = N` entries) as fixed-size arrays.
+    fn mul_vec_fixed<const N: usize>(&self, x: &[f64], y: &mut [f64]) {
+        let (n, kl, w) = (self.n, self.kl, self.width());
+        if n < N {
+            return self.mul_vec_rows(0, n, x, y);
+        }
+        // Rows kl ..= n - 1 - ku hold N entries starting at column i - kl.
+        let (first, last) = (kl, n - (N - kl));
+        self.mul_vec_rows(0, first, x, y);
+        for i in first..=last {
+            let row: &[f64; N] = self.data[i * w..i * w + N].try_into().expect("N entries");
+            let xs: &[f64; N] = x[i - kl..i - kl + N].try_into().expect("N entries");
+            y[i] = dot(row, xs);
+        }
+        self.mul_vec_rows(last + 1, n, x, y);
+    }
+
+    /// Rows `from..to` of `y = A x`.
+    fn mul_vec_rows(&self, from: usize, to: usize, x: &[f64], y: &mut [f64]) {
         let w = self.width();
-        for (i, yi) in y.iter_mut().enumerate().take(self.n) {
+        for (i, yi) in y.iter_mut().enumerate().take(to).skip(from) {
             let lo = i.saturating_sub(self.kl);
             let hi = (i + self.ku).min(self.n - 1);
             let start = i * w + (lo + self.kl - i);
@@ -189,7 +215,7 @@ impl BandMatrix {
 
 /// `sum_i a_i b_i` with four partial sums (the rows are short: the latency of one chained
 /// sum would dominate).
-#[inline]
+#[inline(always)]
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     let mut s = [0.0; 4];
     let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
@@ -289,12 +315,29 @@ impl Ldlt {
 
     /// Solves `L D L^T x = rhs` in place.
     fn solve(&self, x: &mut [f64]) {
+        match self.b {
+            7 => self.solve_fixed::<7>(x),
+            11 => self.solve_fixed::<11>(x),
+            _ => self.solve_fixed::<0>(x),
+        }
+    }
+
+    /// [`Self::solve`] with the full columns of `B = b` entries as fixed-size arrays
+    /// (`B = 0`: no fixed size).
+    #[inline(always)]
+    fn solve_fixed<const B: usize>(&self, x: &mut [f64]) {
         let (n, b, bw) = (self.n, self.b, self.b + 1);
         // L y = rhs, column by column (rows of L^T).
         for k in 0..n {
             let xk = x[k];
             let hi = (k + b).min(n - 1);
-            if xk != 0.0 {
+            if B > 0 && hi == k + B {
+                let xs: &mut [f64; B] = (&mut x[k + 1..=hi]).try_into().expect("B entries");
+                let u: &[f64; B] = self.upper[k * b..k * b + B].try_into().expect("B entries");
+                for t in 0..B {
+                    xs[t] -= u[t] * xk;
+                }
+            } else {
                 for (xi, u) in x[k + 1..=hi].iter_mut().zip(&self.upper[k * b..]) {
                     *xi -= u * xk;
                 }
@@ -306,8 +349,16 @@ impl Ldlt {
         // L^T x = y, row by row of L from the bottom.
         for i in (0..n).rev() {
             let xi = x[i];
-            let lo = i.saturating_sub(b);
-            if xi != 0.0 {
+            if B > 0 && i >= B {
+                let xs: &mut [f64; B] = (&mut x[i - B..i]).try_into().expect("B entries");
+                let l: &[f64; B] = self.lower[i * bw..i * bw + B]
+                    .try_into()
+                    .expect("B entries");
+                for t in 0..B {
+                    xs[t] -= l[t] * xi;
+                }
+            } else {
+                let lo = i.saturating_sub(b);
                 let row = &self.lower[i * bw + lo + b - i..i * bw + b];
                 for (xk, l) in x[lo..i].iter_mut().zip(row) {
                     *xk -= l * xi;
