@@ -198,7 +198,7 @@ impl PlanarPoint {
 }
 
 /// Strain, unit tangent and stretch at an axial point: what the axial term needs (its
-/// gradient with respect to `r'` is the tangent, its Hessian [`axial_hessian`]).
+/// gradient with respect to `r'` is the tangent, its Hessian [`PlanarAxial::hessian`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PlanarAxial {
     /// Axial strain `eps = |r'| - 1`.
