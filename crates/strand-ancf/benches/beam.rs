@@ -5,7 +5,7 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use strand_ancf::band::BandMatrix;
+use strand_ancf::band::{BandMatrix, BandSolver};
 use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support};
 use strand_ancf::dynamics::{DynamicOptions, Scheme, run_dynamic, stable_step};
 use strand_ancf::statics::{StaticOptions, solve_static};
@@ -129,5 +129,97 @@ fn paper_pendulum(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, assembly, integrators, paper_pendulum);
+/// The parts of one Newton iteration of generalized-alpha on the paper's section-3 pendulum
+/// (30 planar elements, pinned), bent into an arc of curvature 3/m with a small stretch so that
+/// wires slip: the forces alone (every iteration), the forces and tangent, the iteration
+/// matrix `K + beta' M` and its factorization (iterations that refresh it), the product with
+/// the mass matrix and the solve (every iteration).
+fn newton_iteration(c: &mut Criterion) {
+    for kind in [LawKind::Constant, LawKind::Continuous, LawKind::Hysteretic] {
+        let s = section3(1.0);
+        let b = Beam::new(
+            BeamSpec {
+                elements: 30,
+                bending_points: None,
+                mass_per_length: s.mass_per_length(),
+                element: ElementKind::Planar,
+                direction: [1.0, 0.0, 0.0],
+                gravity: [0.0, -9.8, 0.0],
+                start: Some(Support::Pinned),
+                end: None,
+            },
+            SectionLaw::new(&s, kind),
+        )
+        .unwrap();
+        let (k0, stretch) = (3.0, 1.0 + 2e-4);
+        let mut q = b.reference().to_vec();
+        let l = b.element_length();
+        for j in 0..=30 {
+            let x = j as f64 * l;
+            let (sn, cs) = (k0 * x).sin_cos();
+            q[4 * j..4 * j + 4].copy_from_slice(&[
+                stretch * sn / k0,
+                stretch * (cs - 1.0) / k0,
+                stretch * cs,
+                -stretch * sn,
+            ]);
+        }
+        let slip = vec![0.0; b.state_len()];
+        let mut trial = slip.clone();
+        let mut force = vec![0.0; b.coords()];
+        let n = b.dofs();
+        let mut k = BandMatrix::zeros(n, b.bandwidth(), b.bandwidth());
+        let mut g = c.benchmark_group(format!("Newton iteration, pendulum, {}", kind.name()));
+        g.bench_function("forces", |bch| {
+            bch.iter(|| {
+                b.internal(black_box(&q), &slip, &mut trial, &mut force, None, None)
+                    .unwrap()
+            })
+        });
+        g.bench_function("forces and tangent", |bch| {
+            bch.iter(|| {
+                b.internal(
+                    black_box(&q),
+                    &slip,
+                    &mut trial,
+                    &mut force,
+                    Some(&mut k),
+                    None,
+                )
+                .unwrap()
+            })
+        });
+        let mut solver = BandSolver::default();
+        let beta_p = 1.0 / (0.25 * 1e-6);
+        let mut s = k.clone();
+        g.bench_function("iteration matrix and factorization", |bch| {
+            bch.iter(|| {
+                s.fill_zero();
+                s.add_scaled(1.0, &k);
+                s.add_scaled(beta_p, b.mass());
+                assert!(solver.factorize(black_box(&s)));
+            })
+        });
+        let x: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();
+        let mut y = vec![0.0; n];
+        g.bench_function("mass times vector", |bch| {
+            bch.iter(|| b.mass().mul_vec(black_box(&x), &mut y))
+        });
+        g.bench_function("solve", |bch| {
+            bch.iter(|| {
+                y.copy_from_slice(&x);
+                solver.solve(black_box(&mut y));
+            })
+        });
+        g.finish();
+    }
+}
+
+criterion_group!(
+    benches,
+    assembly,
+    integrators,
+    paper_pendulum,
+    newton_iteration
+);
 criterion_main!(benches);

@@ -24,7 +24,7 @@ use crate::band::BandMatrix;
 use crate::error::AncfError;
 use crate::load::{planar_gravity, spatial_gravity};
 use crate::mass::{planar_mass, spatial_mass};
-use crate::planar::{self, PlanarCoords, PlanarMatrix, PlanarPoint, PlanarSection, PlanarVector};
+use crate::planar::{self, PlanarAxial, PlanarCoords, PlanarMatrix, PlanarPoint, PlanarVector};
 use crate::shape::{QuadraturePoint, ShapeRow, element_quadrature, gauss_legendre};
 use crate::spatial::{
     self, SectionFrame, SpatialCoords, SpatialMatrix, SpatialPoint, SpatialSection, SpatialVector,
@@ -427,24 +427,24 @@ impl Beam {
             let tr = &mut trial[s0.min(tl)..s1.min(tl)];
             let pts = points.as_deref_mut().map(|p| &mut p[p0..p0 + np]);
             let want_k = tangent.is_some();
-            let (ke, ev): (&[f64], Evaluation) = match self.spec.element {
+            let (ke, ev, sym): (&[f64], Evaluation, bool) = match self.spec.element {
                 ElementKind::Planar => {
                     let qe = self.planar_coords(q, e);
-                    let (f, ev) =
+                    let (f, ev, sym) =
                         self.element_planar(e, rule, &qe, sl, tr, want_k.then_some(&mut kp), pts)?;
                     for a in 0..8 {
                         force[e * nd + a] += f[a];
                     }
-                    (kp.as_slice(), ev)
+                    (kp.as_slice(), ev, sym)
                 }
                 ElementKind::Spatial => {
                     let qe = self.spatial_coords(q, e);
-                    let (f, ev) =
+                    let (f, ev, sym) =
                         self.element_spatial(e, rule, &qe, sl, tr, want_k.then_some(&mut ks), pts)?;
                     for a in 0..12 {
                         force[e * nd + a] += f[a];
                     }
-                    (ks.as_slice(), ev)
+                    (ks.as_slice(), ev, sym)
                 }
             };
             p0 += np;
@@ -454,6 +454,26 @@ impl Beam {
             if let Some(t) = tangent.as_deref_mut() {
                 // Element matrices are column-major, 2 nd x 2 nd.
                 let m = 2 * nd;
+                if sym {
+                    // Mirror the lower triangle: the global matrix is then exactly symmetric
+                    // (each mirrored pair sums the same values in the same order), which lets
+                    // the solver use LDL^T.
+                    for b in 0..m {
+                        let Some(ib) = self.free_index[e * nd + b] else {
+                            continue;
+                        };
+                        for a in b..m {
+                            if let Some(ia) = self.free_index[e * nd + a] {
+                                let v = ke[a + b * m];
+                                t.add(ia, ib, v);
+                                if a != b {
+                                    t.add(ib, ia, v);
+                                }
+                            }
+                        }
+                    }
+                    continue;
+                }
                 for b in 0..m {
                     let Some(ib) = self.free_index[e * nd + b] else {
                         continue;
@@ -497,7 +517,9 @@ impl Beam {
         })
     }
 
-    /// Forces (and tangent) of one planar element.
+    /// Forces (and tangent) of one planar element. The symmetric part of the tangent is built
+    /// on and below the diagonal and mirrored; the coupling `d M / d eps` (the only
+    /// non-symmetric term) is added after.
     #[allow(clippy::too_many_arguments)]
     fn element_planar(
         &self,
@@ -508,7 +530,7 @@ impl Beam {
         trial: &mut [f64],
         mut tangent: Option<&mut PlanarMatrix>,
         mut points: Option<&mut [PointState]>,
-    ) -> Result<(PlanarVector, Evaluation), BeamError> {
+    ) -> Result<(PlanarVector, Evaluation, bool), BeamError> {
         let kin = |source| BeamError::Kinematics { element: e, source };
         let ea = self.law.axial_stiffness();
         let mut f = PlanarVector::zeros();
@@ -516,29 +538,28 @@ impl Beam {
             t.fill(0.0);
         }
         let mut ev = Evaluation::default();
+        // The non-symmetric part of the tangent, if any.
+        let mut unsym: Option<PlanarMatrix> = None;
         // Axial points: reduced quadrature.
         let mut eps_a = [0.0; AXIAL_POINTS];
         let mut eps_q = [PlanarVector::zeros(); AXIAL_POINTS];
-        let mut eps_h = [nalgebra::Matrix4::<f64>::zeros(); AXIAL_POINTS];
+        let mut axial = [PlanarAxial {
+            eps: 0.0,
+            tangent: Vector2::zeros(),
+            stretch: 1.0,
+        }; AXIAL_POINTS];
         for (j, ap) in rule.axial.iter().enumerate() {
-            let pt = PlanarPoint::at(qe, &ap.row);
-            let sec = |eps: f64| PlanarSection {
-                n: ea * eps,
-                dn_deps: ea,
-                ..Default::default()
-            };
+            let a = PlanarPoint::at(qe, &ap.row).axial().map_err(kin)?;
+            axial[j] = a;
+            eps_a[j] = a.eps;
+            let n = ea * a.eps;
+            let ge = Vector4::new(a.tangent.x, a.tangent.y, 0.0, 0.0);
+            planar::add_gradient(&mut f, ap.weight, &ap.row, &(ge * n));
+            eps_q[j] = planar::scatter_gradient(&ap.row, &ge);
             if let Some(t) = tangent.as_deref_mut() {
-                let s2 = pt.second().map_err(kin)?;
-                let s = sec(s2.first.eps);
-                eps_a[j] = s2.first.eps;
-                planar::add_gradient(&mut f, ap.weight, &ap.row, &s2.force(&s));
-                planar::add_hessian(t, ap.weight, &ap.row, &s2.tangent(&s));
-                eps_q[j] = planar::scatter_gradient(&ap.row, &s2.first.eps_grad);
-                eps_h[j] = s2.eps_hess;
-            } else {
-                let s1 = pt.first().map_err(kin)?;
-                eps_a[j] = s1.eps;
-                planar::add_gradient(&mut f, ap.weight, &ap.row, &s1.force(&sec(s1.eps)));
+                // N eps_yy + EA eps_y eps_y^T: only the r' block.
+                let h = a.hessian() * n + a.tangent * a.tangent.transpose() * ea;
+                planar::add_hessian_aa_lower(t, ap.weight, &ap.row, &h);
             }
             ev.energy += ap.weight * 0.5 * ea * eps_a[j] * eps_a[j];
         }
@@ -546,32 +567,23 @@ impl Beam {
         // there is the mean of the axial points.
         {
             let c = HOURGLASS * ea * self.element_length;
-            let pt = PlanarPoint::at(qe, &rule.mid);
+            let a = PlanarPoint::at(qe, &rule.mid).axial().map_err(kin)?;
             let mean = 1.0 / AXIAL_POINTS as f64;
-            if let Some(t) = tangent.as_deref_mut() {
-                let s2 = pt.second().map_err(kin)?;
-                let d = s2.first.eps - mean * eps_a.iter().sum::<f64>();
-                let mut g = planar::scatter_gradient(&rule.mid, &s2.first.eps_grad);
-                for eq in &eps_q {
-                    g -= eq * mean;
-                }
-                f += g * (c * d);
-                t.ger(c, &g, &g, 1.0);
-                planar::add_hessian(t, c * d, &rule.mid, &s2.eps_hess);
-                for (ap, hq) in rule.axial.iter().zip(&eps_h) {
-                    planar::add_hessian(t, -c * d * mean, &ap.row, hq);
-                }
-                ev.energy += 0.5 * c * d * d;
-            } else {
-                let s1 = pt.first().map_err(kin)?;
-                let d = s1.eps - mean * eps_a.iter().sum::<f64>();
-                planar::add_gradient(&mut f, c * d, &rule.mid, &s1.eps_grad);
-                for ap in &rule.axial {
-                    let e1 = PlanarPoint::at(qe, &ap.row).first().map_err(kin)?;
-                    planar::add_gradient(&mut f, -c * d * mean, &ap.row, &e1.eps_grad);
-                }
-                ev.energy += 0.5 * c * d * d;
+            let d = a.eps - mean * eps_a.iter().sum::<f64>();
+            let ge = Vector4::new(a.tangent.x, a.tangent.y, 0.0, 0.0);
+            let mut g = planar::scatter_gradient(&rule.mid, &ge);
+            for eq in &eps_q {
+                g -= eq * mean;
             }
+            f += g * (c * d);
+            if let Some(t) = tangent.as_deref_mut() {
+                t.ger(c, &g, &g, 1.0);
+                planar::add_hessian_aa_lower(t, c * d, &rule.mid, &a.hessian());
+                for (ap, aj) in rule.axial.iter().zip(&axial) {
+                    planar::add_hessian_aa_lower(t, -c * d * mean, &ap.row, &aj.hessian());
+                }
+            }
+            ev.energy += 0.5 * c * d * d;
         }
         // Bending points.
         let ws = if self.law.kind().has_state() {
@@ -594,31 +606,39 @@ impl Beam {
             let kappa;
             let r;
             if let Some(t) = tangent.as_deref_mut() {
-                let s2 = pt.second().map_err(kin)?;
-                kappa = s2.first.kappa;
+                let b2 = pt.bending_second().map_err(kin)?;
+                kappa = b2.kappa;
                 r = self.law.planar(&bp.station, eps, kappa, sl, tr);
-                let sec = PlanarSection {
-                    m: r.moment,
-                    dm_dkappa: r.moment_curvature,
-                    ..Default::default()
-                };
-                planar::add_gradient(&mut f, w, &bp.qp.row, &s2.force(&sec));
-                planar::add_hessian(t, w, &bp.qp.row, &s2.tangent(&sec));
+                planar::add_gradient(&mut f, w, &bp.qp.row, &(b2.grad * r.moment));
+                // M kappa_yy + M_kappa kappa_y kappa_y^T (kappa_yy has no r'' r'' block).
+                let mut h = b2.grad * b2.grad.transpose() * r.moment_curvature;
+                for j in 0..2 {
+                    for i in 0..2 {
+                        h[(i, j)] += b2.hess_aa[(i, j)] * r.moment;
+                        h[(i, 2 + j)] += b2.hess_ab[(i, j)] * r.moment;
+                        h[(2 + j, i)] += b2.hess_ab[(i, j)] * r.moment;
+                    }
+                }
+                planar::add_hessian_lower(t, w, &bp.qp.row, &h);
                 if r.moment_strain != 0.0 {
                     // d M / d eps_bar couples the curvature here to the axial points.
-                    let gk = planar::scatter_gradient(&bp.qp.row, &s2.first.kappa_grad);
+                    let gk = planar::scatter_gradient(&bp.qp.row, &b2.grad);
                     let mut ge = PlanarVector::zeros();
                     for j in 0..AXIAL_POINTS {
                         ge += eps_q[j] * bp.interp[j];
                     }
-                    t.ger(w * r.moment_strain, &gk, &ge, 1.0);
+                    unsym.get_or_insert_with(PlanarMatrix::zeros).ger(
+                        w * r.moment_strain,
+                        &gk,
+                        &ge,
+                        1.0,
+                    );
                 }
             } else {
-                let s1 = pt.first().map_err(kin)?;
-                kappa = s1.kappa;
+                let (k, grad) = pt.bending_first().map_err(kin)?;
+                kappa = k;
                 r = self.law.planar(&bp.station, eps, kappa, sl, tr);
-                let local: Vector4<f64> = s1.kappa_grad * r.moment;
-                planar::add_gradient(&mut f, w, &bp.qp.row, &local);
+                planar::add_gradient(&mut f, w, &bp.qp.row, &(grad * r.moment));
             }
             if !(r.moment.is_finite() && r.moment_curvature.is_finite()) {
                 return Err(BeamError::NonFinite {
@@ -643,6 +663,12 @@ impl Beam {
                 };
             }
         }
+        if let Some(t) = tangent {
+            planar::mirror_lower(t);
+            if let Some(u) = &unsym {
+                *t += u;
+            }
+        }
         if !f.iter().all(|v| v.is_finite()) {
             return Err(BeamError::NonFinite {
                 element: e,
@@ -650,7 +676,7 @@ impl Beam {
                 quantity: "elastic force",
             });
         }
-        Ok((f, ev))
+        Ok((f, ev, unsym.is_none()))
     }
 }
 
@@ -668,7 +694,7 @@ impl Beam {
         trial: &mut [f64],
         mut tangent: Option<&mut SpatialMatrix>,
         mut points: Option<&mut [PointState]>,
-    ) -> Result<(SpatialVector, Evaluation), BeamError> {
+    ) -> Result<(SpatialVector, Evaluation, bool), BeamError> {
         let kin = |source| BeamError::Kinematics { element: e, source };
         let frame = self.frame.as_ref().expect("spatial beams have a frame");
         let ea = self.law.axial_stiffness();
@@ -677,6 +703,9 @@ impl Beam {
             t.fill(0.0);
         }
         let mut ev = Evaluation::default();
+        // Whether the tangent is symmetric: d M / d eps and a non-symmetric d M / d kappa break
+        // the symmetry.
+        let mut symmetric = true;
         let mut eps_a = [0.0; AXIAL_POINTS];
         let mut eps_q = [SpatialVector::zeros(); AXIAL_POINTS];
         let mut eps_h = [nalgebra::Matrix6::<f64>::zeros(); AXIAL_POINTS];
@@ -763,7 +792,9 @@ impl Beam {
                 };
                 spatial::add_gradient(&mut f, w, &bp.qp.row, &s2.force(&sec));
                 spatial::add_hessian(t, w, &bp.qp.row, &s2.tangent(&sec));
+                symmetric &= r.moment_curvature[0][1] == r.moment_curvature[1][0];
                 if r.moment_strain != [0.0; 2] {
+                    symmetric = false;
                     let mut ge = SpatialVector::zeros();
                     for j in 0..AXIAL_POINTS {
                         ge += eps_q[j] * bp.interp[j];
@@ -812,7 +843,7 @@ impl Beam {
                 quantity: "elastic force",
             });
         }
-        Ok((f, ev))
+        Ok((f, ev, symmetric))
     }
 }
 

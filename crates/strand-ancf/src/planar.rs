@@ -197,6 +197,136 @@ impl PlanarPoint {
     }
 }
 
+/// Strain, unit tangent and stretch at an axial point: what the axial term needs (its
+/// gradient with respect to `r'` is the tangent, its Hessian [`PlanarAxial::hessian`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanarAxial {
+    /// Axial strain `eps = |r'| - 1`.
+    pub eps: f64,
+    /// Unit tangent `t = r' / |r'|` = `d eps / d r'`.
+    pub tangent: Vector2<f64>,
+    /// `|r'|`.
+    pub stretch: f64,
+}
+
+/// Curvature and its derivatives at a bending point: what the bending term needs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanarBending {
+    /// Signed curvature per reference length (1/m).
+    pub kappa: f64,
+    /// `d kappa / dy`.
+    pub grad: Vector4<f64>,
+    /// `d^2 kappa / d r'^2` (symmetric).
+    pub hess_aa: Matrix2<f64>,
+    /// `d^2 kappa / d r' d r''` (rows `r'`); the `r''` block is zero.
+    pub hess_ab: Matrix2<f64>,
+}
+
+impl PlanarPoint {
+    /// Strain and tangent only (as [`Self::first`], without the curvature).
+    #[inline]
+    pub fn axial(&self) -> Result<PlanarAxial, AncfError> {
+        let n = self.stretch()?;
+        Ok(PlanarAxial {
+            eps: n - 1.0,
+            tangent: self.dr / n,
+            stretch: n,
+        })
+    }
+
+    /// Curvature and its gradient only (as [`Self::first`], without the strain).
+    ///
+    /// (The curvature could skip the square root, with `1 / |r'|^2` from `r' . r'`; that
+    /// rounding made Newton stall at 3e-9 of the load, above its 1e-9 tolerance, on the
+    /// EA L^2 / EI = 1e7 elastica of `tests/statics.rs`.)
+    #[inline]
+    pub fn bending_first(&self) -> Result<(f64, Vector4<f64>), AncfError> {
+        let k = self.core()?;
+        let ka = k.c_a * k.g + k.g_a * k.c;
+        let kb = k.c_b * k.g;
+        Ok((k.c * k.g, Vector4::new(ka.x, ka.y, kb.x, kb.y)))
+    }
+
+    /// Curvature, gradient and the non-zero blocks of the Hessian (as [`Self::second`],
+    /// without the strain).
+    #[inline]
+    pub fn bending_second(&self) -> Result<PlanarBending, AncfError> {
+        let k = self.core()?;
+        let ka = k.c_a * k.g + k.g_a * k.c;
+        let kb = k.c_b * k.g;
+        let (n, t, g, c) = (k.n, k.t, k.g, k.c);
+        let g_aa = (t * t.transpose() * 8.0 - Matrix2::identity() * 2.0) * (g / (n * n));
+        let hess_aa = k.c_a * k.g_a.transpose() + k.g_a * k.c_a.transpose() + g_aa * c;
+        let c_ab = Matrix2::new(0.0, 1.0, -1.0, 0.0);
+        let hess_ab = c_ab * g + k.g_a * k.c_b.transpose();
+        Ok(PlanarBending {
+            kappa: c * g,
+            grad: Vector4::new(ka.x, ka.y, kb.x, kb.y),
+            hess_aa,
+            hess_ab,
+        })
+    }
+}
+
+impl PlanarAxial {
+    /// `d^2 eps / d r'^2` = `(I - t t^T) / |r'|` (the only non-zero block).
+    #[inline]
+    pub fn hessian(&self) -> Matrix2<f64> {
+        (Matrix2::identity() - self.tangent * self.tangent.transpose()) / self.stretch
+    }
+}
+
+/// `out += w d^2 f/dq^2` for a local Hessian whose only non-zero block is `d^2 f / d r'^2`
+/// (`haa`, symmetric), lower triangle only (see [`add_hessian_lower`]).
+#[inline]
+pub fn add_hessian_aa_lower(out: &mut PlanarMatrix, w: f64, row: &ShapeRow, haa: &Matrix2<f64>) {
+    for m in 0..4 {
+        let am = w * row.ds[m];
+        for k in m..4 {
+            let c = am * row.ds[k];
+            for j in 0..2 {
+                for i in 0..2 {
+                    out[(2 * k + i, 2 * m + j)] += c * haa[(i, j)];
+                }
+            }
+        }
+    }
+}
+
+/// `out += w d^2 f/dq^2` for a symmetric local Hessian `h`, on and below the diagonal blocks
+/// only: entries above the diagonal are partial (complete them with [`mirror_lower`]).
+#[inline]
+pub fn add_hessian_lower(out: &mut PlanarMatrix, w: f64, row: &ShapeRow, h: &Matrix4<f64>) {
+    // t = h B for the columns of node block m (weight included), then the blocks k >= m.
+    for m in 0..4 {
+        let (am, bm) = (w * row.ds[m], w * row.dds[m]);
+        let mut t = nalgebra::Matrix4x2::<f64>::zeros();
+        for j in 0..2 {
+            for r in 0..4 {
+                t[(r, j)] = h[(r, j)] * am + h[(r, 2 + j)] * bm;
+            }
+        }
+        for k in m..4 {
+            let (ak, bk) = (row.ds[k], row.dds[k]);
+            for j in 0..2 {
+                for i in 0..2 {
+                    out[(2 * k + i, 2 * m + j)] += ak * t[(i, j)] + bk * t[(2 + i, j)];
+                }
+            }
+        }
+    }
+}
+
+/// Copies the lower triangle of `out` onto the upper one.
+#[inline]
+pub fn mirror_lower(out: &mut PlanarMatrix) {
+    for c in 1..8 {
+        for r in 0..c {
+            out[(r, c)] = out[(c, r)];
+        }
+    }
+}
+
 #[inline]
 fn first_from(k: &Core) -> PlanarFirst {
     let ka = k.c_a * k.g + k.g_a * k.c;

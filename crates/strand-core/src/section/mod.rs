@@ -441,6 +441,7 @@ impl SectionLaw {
     }
 
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn slide(
         &self,
         law: LayerLaw,

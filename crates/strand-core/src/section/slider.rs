@@ -48,6 +48,7 @@ pub(crate) struct SliderForce {
 /// `cap_neg >= 0` the friction limits of the force (N), `paper_factor` = cos^2(alpha) (the
 /// ratio of the slip force to the stick force at the `paper` law's switch, eq. (23)), `slip`
 /// the committed slip strain (hysteretic law only).
+#[inline(always)]
 pub(crate) fn slider(
     kind: LawKind,
     k: f64,
@@ -57,12 +58,14 @@ pub(crate) fn slider(
     paper_factor: f64,
     slip: f64,
 ) -> SliderForce {
+    // Loop-invariant where the slider is inlined into a loop over wires: no division per wire.
+    let inv_k = 1.0 / k;
     let stick = |f: f64, slip: f64| SliderForce {
         force: f,
         d_strain: k,
         d_cap_pos: 0.0,
         d_cap_neg: 0.0,
-        energy: 0.5 * f * f / k,
+        energy: 0.5 * f * f * inv_k,
         d_energy_cap: 0.0,
         slip_work: 0.0,
         slip,
@@ -92,7 +95,7 @@ pub(crate) fn slider(
             } else {
                 // Energy: integral of the moment, 1/2 k e_c^2 + cap (|e| - e_c), e_c = cap / k,
                 // i.e. cap |e| - cap^2 / (2 k).
-                let ec = cap / k;
+                let ec = cap * inv_k;
                 let energy = 0.5 * cap * ec + cap * (e.abs() - ec);
                 sliding(e >= 0.0, (energy, e.abs() - ec), slip, 0.0)
             }
@@ -100,7 +103,7 @@ pub(crate) fn slider(
         LawKind::Paper => {
             let cap = if e >= 0.0 { cap_pos } else { cap_neg };
             // eq. (23): the stick stress reaches the slip stress divided by cos^2(alpha).
-            let ec = cap / (k * paper_factor);
+            let ec = cap * inv_k / paper_factor;
             if e.abs() <= ec {
                 stick(k * e, slip)
             } else {
@@ -113,19 +116,19 @@ pub(crate) fn slider(
         LawKind::Hysteretic => {
             let trial = k * (e - slip);
             if trial > cap_pos {
-                let s = e - cap_pos / k;
+                let s = e - cap_pos * inv_k;
                 // The slip work books the energy change of a moving limit: no cap term.
                 sliding(
                     true,
-                    (0.5 * cap_pos * cap_pos / k, 0.0),
+                    (0.5 * cap_pos * cap_pos * inv_k, 0.0),
                     s,
                     cap_pos * (s - slip).abs(),
                 )
             } else if trial < -cap_neg {
-                let s = e + cap_neg / k;
+                let s = e + cap_neg * inv_k;
                 sliding(
                     false,
-                    (0.5 * cap_neg * cap_neg / k, 0.0),
+                    (0.5 * cap_neg * cap_neg * inv_k, 0.0),
                     s,
                     cap_neg * (s - slip).abs(),
                 )
