@@ -100,7 +100,8 @@ fn largest_eigenvalue(beam: &Beam) -> Result<f64, BeamError> {
         }
         let mut mw = vec![0.0; n];
         let bnorm = m_norm(&w, &mut mw);
-        if j + 1 == m_steps || !(bnorm > 1e-12 * a.abs().max(f64::MIN_POSITIVE)) {
+        let breakdown = bnorm.is_nan() || bnorm <= 1e-12 * a.abs().max(f64::MIN_POSITIVE);
+        if j + 1 == m_steps || breakdown {
             beta.push(bnorm);
             break;
         }

@@ -192,7 +192,7 @@ pub fn verlet_stable(beam: &Beam, h: f64, steps: usize, start: &Start, scale: f6
             return false;
         }
         let e = total(&q, &v, &mut mv, ev.energy, dissipated);
-        if !((e - e0).abs() <= BALANCE * scale) {
+        if (e - e0).is_nan() || (e - e0).abs() > BALANCE * scale {
             return false;
         }
     }
