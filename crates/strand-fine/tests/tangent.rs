@@ -1,0 +1,184 @@
+//! The assembled static tangent (joints, anchors and contacts) against a central-difference
+//! Jacobian of the residual loads, on a strand with some contacts closed, frictionless and
+//! with friction (stick and slip, committed histories), away from switch points.
+
+use nalgebra::{DMatrix, Vector3};
+use strand_core::{Strand, StrandSpec};
+use strand_fine::joint::perturb;
+use strand_fine::{
+    ContactOptions, ContactState, Discretisation, FineModel, ModelState, Pose, Support, so3,
+};
+
+const SEGMENTS: usize = 12;
+
+fn model(mu: f64) -> FineModel {
+    let mut spec = StrandSpec::paper(0.4, 2e8, 7801.0);
+    spec.friction = mu;
+    let s = Strand::new(spec).unwrap();
+    let mut m = FineModel::from_strand(
+        &s,
+        Discretisation {
+            core_segments: SEGMENTS,
+            wire_segments: SEGMENTS,
+        },
+        Support::Clamped,
+        Support::Free,
+    );
+    m.add_contacts(&s, &ContactOptions::default());
+    m.gravity = Vector3::new(0.0, -8.0, 0.0);
+    m
+}
+
+/// Residual loads (forces and torques of every segment) at `state`, full load.
+fn residual(m: &FineModel, state: &ModelState) -> Vec<f64> {
+    let mut l = m.load_buffers();
+    m.compute_loads(state, 1.0, &mut l);
+    l.iter()
+        .flat_map(|w| w.forces.iter().zip(&w.torques))
+        .flat_map(|(f, t)| f.iter().chain(t.iter()).copied().collect::<Vec<_>>())
+        .collect()
+}
+
+fn assembled(m: &FineModel, state: &ModelState) -> DMatrix<f64> {
+    let n = 6 * m.segment_count();
+    let mut k = DMatrix::zeros(n, n);
+    for e in m.element_tangents(state) {
+        for (bi, si) in e.segments.iter().enumerate() {
+            let Some(si) = si else { continue };
+            for (bj, sj) in e.segments.iter().enumerate() {
+                let Some(sj) = sj else { continue };
+                for r in 0..6 {
+                    for c in 0..6 {
+                        k[(6 * si + r, 6 * sj + c)] += e.stiffness[(6 * bi + r, 6 * bj + c)];
+                    }
+                }
+            }
+        }
+    }
+    k
+}
+
+fn pose_mut(state: &mut ModelState, mut g: usize) -> &mut Pose {
+    for w in &mut state.wires {
+        if g < w.poses.len() {
+            return &mut w.poses[g];
+        }
+        g -= w.poses.len();
+    }
+    unreachable!()
+}
+
+/// `-d(residual)/d(coordinates)` by central differences: translations by 1e-10 m, world
+/// rotation increments by 1e-8 rad.
+fn finite_difference(m: &FineModel, state: &ModelState) -> DMatrix<f64> {
+    let n = 6 * m.segment_count();
+    let mut k = DMatrix::zeros(n, n);
+    for col in 0..n {
+        let h = if col % 6 < 3 { 1e-10 } else { 1e-8 };
+        let mut sp = state.clone();
+        perturb(pose_mut(&mut sp, col / 6), col % 6, h);
+        let mut sm = state.clone();
+        perturb(pose_mut(&mut sm, col / 6), col % 6, -h);
+        let (rp, rm) = (residual(m, &sp), residual(m, &sm));
+        for r in 0..n {
+            k[(r, col)] = -(rp[r] - rm[r]) / (2.0 * h);
+        }
+    }
+    k
+}
+
+/// Deterministic pseudo-random numbers in [-1, 1).
+fn uniform(seed: &mut u64) -> f64 {
+    *seed = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    ((*seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+}
+
+/// Moves every segment by up to `dx` (m) and turns it by up to `dw` (rad).
+fn shake(state: &mut ModelState, seed: &mut u64, dx: f64, dw: f64) {
+    for w in &mut state.wires {
+        for p in &mut w.poses {
+            let mut v = || Vector3::new(uniform(seed), uniform(seed), uniform(seed));
+            p.position += v() * dx;
+            p.rotation = so3::exp(&(v() * dw)) * p.rotation;
+        }
+    }
+}
+
+/// Checks the tangent at `state` and returns the contact counts (open, stick, slip).
+fn check(m: &FineModel, state: &ModelState) -> [usize; 3] {
+    let mut loads = m.load_buffers();
+    m.compute_loads(state, 1.0, &mut loads);
+    // Away from the kink of the penalty and from the stick-slip switch: every gap at least
+    // 1e-9 m from zero (the finite-difference steps move a contact point by 1e-10 m).
+    let core = &state.wires[0].poses;
+    for ((w, s), l) in m.wires.iter().zip(&state.wires).zip(&loads).skip(1) {
+        for (cp, c) in w.contacts.iter().zip(&l.contacts) {
+            let p = s.poses[cp.segment].point(&cp.offset);
+            let j = c.core_segment;
+            let q = strand_fine::contact::closest_on_axis(
+                &p,
+                &core[j],
+                m.wires[0].chain.segments[j].length,
+            );
+            let gap = (p - q).norm() - cp.rest_distance;
+            assert!(gap.abs() > 1e-9, "a contact sits at the kink: gap {gap:e}");
+        }
+    }
+    let k = assembled(m, state);
+    let fd = finite_difference(m, state);
+    let scale = fd.norm();
+    let err = (&k - &fd).norm() / scale;
+    let mut worst: f64 = 0.0;
+    for c in 0..k.ncols() {
+        let col = fd
+            .column(c)
+            .norm()
+            .max(1e-6 * scale / (k.ncols() as f64).sqrt());
+        worst = worst.max((k.column(c) - fd.column(c)).norm() / col);
+    }
+    let count = |st: ContactState| {
+        loads
+            .iter()
+            .flat_map(|l| l.contacts.iter())
+            .filter(|c| c.state == st)
+            .count()
+    };
+    let counts = [
+        count(ContactState::Open),
+        count(ContactState::Stick),
+        count(ContactState::Slip),
+    ];
+    println!(
+        "tangent vs finite differences: relative error {err:.2e} (worst column {worst:.2e}); \
+         contacts open {}, stick {}, slip {}",
+        counts[0], counts[1], counts[2]
+    );
+    assert!(err < 1e-6, "tangent off by {err:e}");
+    assert!(worst < 1e-3, "a column of the tangent is off by {worst:e}");
+    counts
+}
+
+#[test]
+fn static_tangent_matches_finite_differences_with_contacts() {
+    for mu in [0.0, 0.3] {
+        let m = model(mu);
+        let mut state = m.rest_state();
+        let mut seed = 7;
+        // Some contacts pressed, some open; histories open (no friction yet).
+        shake(&mut state, &mut seed, 2e-6, 2e-4);
+        let [open, stick, slip] = check(&m, &state);
+        assert!(open > 0 && stick + slip > 0);
+        // Commit, move on: closed histories load the friction springs.
+        let mut loads = m.load_buffers();
+        m.compute_loads(&state, 1.0, &mut loads);
+        m.commit_contacts(&mut state, &loads);
+        shake(&mut state, &mut seed, 1e-6, 1e-4);
+        let [open, stick, slip] = check(&m, &state);
+        assert!(open > 0 && slip > 0);
+        if mu > 0.0 {
+            assert!(stick > 0, "both friction branches are exercised");
+        }
+    }
+}
