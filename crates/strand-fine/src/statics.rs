@@ -1,14 +1,17 @@
-//! Static equilibrium by Newton-Raphson with load stepping and a backtracking line search.
+//! Static equilibrium by Newton-Raphson with adaptive load stepping, a trust region on the
+//! increment and a backtracking line search.
 //!
 //! The unknowns are the segment poses (6 per segment, see [`crate::tangent`]); the residual is
-//! the resultant force and torque on every segment. Gravity is applied in equal load steps;
-//! each step iterates until every segment's force is below `tolerance F_ref + F_round` and
-//! every torque below `(tolerance F_ref + F_round) l_ref`, where `F_ref` is the largest segment
-//! weight, `l_ref` the largest segment length and `F_round = 100 eps x_max k_max` the force
-//! that 100 ulps of the largest coordinate make on the stiffest joint spring (the round-off
-//! floor of the residual: joint gaps are differences of absolute positions). The tangent
-//! is the assembled element stiffness, factored by a sparse LU. Contact histories are frozen
-//! during the iterations of a load step and committed when it converges, so friction follows
+//! the resultant force and torque on every segment. Gravity is applied in load steps of at
+//! most `1 / load_steps` (halved after a failed step, from the last converged state); every
+//! Newton increment is scaled down so that no segment turns by more than `max_rotation` (and
+//! moves by more than `max_translation`); each step iterates until every segment's force is below
+//! `tolerance F_ref + F_round` and every torque below `(tolerance F_ref + F_round) l_ref`, where
+//! `F_ref` is the largest segment weight, `l_ref` the largest segment length and `F_round = 100 eps
+//! x_max k_max` the force that 100 ulps of the largest coordinate make on the stiffest joint spring
+//! (the round-off floor of the residual: joint gaps are differences of absolute positions). The
+//! tangent is the assembled element stiffness, factored by a sparse LU. Contact histories are
+//! frozen during the iterations of a load step and committed when it converges, so friction follows
 //! the load path step by step.
 
 use faer::linalg::solvers::SolveCore;
@@ -33,6 +36,13 @@ pub struct StaticOptions {
     /// Reference force F_ref (N) of the residual; `None`: the largest segment weight (or,
     /// without gravity, E A 1e-9 of the stiffest wire).
     pub force_scale: Option<f64>,
+    /// Smallest load increment (fraction of the full load) tried after failed load steps
+    /// before giving up (-).
+    pub min_increment: f64,
+    /// Largest rotation of a segment in one Newton iteration (rad).
+    pub max_rotation: f64,
+    /// Largest translation of a segment in one Newton iteration (m); `None`: no cap.
+    pub max_translation: Option<f64>,
 }
 
 impl Default for StaticOptions {
@@ -43,6 +53,9 @@ impl Default for StaticOptions {
             max_iterations: 40,
             max_backtracks: 20,
             force_scale: None,
+            min_increment: 1e-4,
+            max_rotation: 0.1,
+            max_translation: None,
         }
     }
 }
@@ -50,7 +63,7 @@ impl Default for StaticOptions {
 /// Outcome of a converged static solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StaticReport {
-    /// Load steps taken.
+    /// Converged load steps (more than requested when increments were halved).
     pub load_steps: usize,
     /// Newton iterations over all load steps.
     pub iterations: usize,
@@ -67,27 +80,36 @@ pub struct StaticReport {
 /// Failure of the static solve.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum StaticError {
-    /// Newton did not reach the tolerance in the allowed iterations.
-    #[error("static solve did not converge at load step {step}: scaled residual {residual:.3e}")]
+    /// Newton did not reach the tolerance, even with the smallest load increment.
+    #[error(
+        "static solve did not converge at load step {step}: scaled residual {residual:.3e} \
+         beyond load factor {load_factor:.6}"
+    )]
     NotConverged {
         /// Load step (1-based).
         step: usize,
+        /// Load factor of the last converged step (-).
+        load_factor: f64,
         /// Scaled residual reached.
         residual: f64,
     },
     /// The tangent could not be factored (e.g. an unsupported rigid-body mode).
-    #[error("singular tangent at load step {step}: {message}")]
+    #[error("singular tangent at load step {step} beyond load factor {load_factor:.6}: {message}")]
     Singular {
         /// Load step (1-based).
         step: usize,
+        /// Load factor of the last converged step (-).
+        load_factor: f64,
         /// Solver message.
         message: String,
     },
     /// A residual became NaN or infinite.
-    #[error("non-finite residual at load step {step}")]
+    #[error("non-finite residual at load step {step} beyond load factor {load_factor:.6}")]
     NonFinite {
         /// Load step (1-based).
         step: usize,
+        /// Load factor of the last converged step (-).
+        load_factor: f64,
     },
 }
 
@@ -217,43 +239,72 @@ pub fn solve_static(
     solve_static_with_progress(model, state, options, &mut |_| {})
 }
 
-/// [`solve_static`] reporting the load factor reached after every load step to `progress`.
-pub fn solve_static_with_progress(
-    model: &FineModel,
-    state: &mut ModelState,
-    options: &StaticOptions,
-    progress: &mut dyn FnMut(f64),
-) -> Result<StaticReport, StaticError> {
-    faer::set_global_parallelism(faer::Par::Seq);
-    let n = 6 * model.segment_count();
-    let sc = scales(model, options);
-    let roundoff = sc.roundoff;
-    let mut loads = model.load_buffers();
-    let mut trial = state.clone();
-    let mut rhs = Mat::<f64>::zeros(n, 1);
-    let mut delta = vec![0.0; n];
-    let mut triplets = Vec::new();
-    let mut iterations = 0;
-    let mut residual = 0.0;
-    for step in 1..=options.load_steps.max(1) {
-        let lambda = step as f64 / options.load_steps.max(1) as f64;
-        model.compute_loads(state, lambda, &mut loads);
-        let (mut rmax, mut r2, mut rel) = residual_norms(&loads, &sc);
+/// Why a Newton attempt at one load factor failed.
+enum Failure {
+    /// Iterations exhausted; the scaled residual reached.
+    Stalled(f64),
+    /// Non-finite residual.
+    NonFinite,
+    /// The tangent could not be factored.
+    Singular(String),
+}
+
+/// Work buffers of the Newton iterations.
+struct Newton {
+    n: usize,
+    loads: Vec<WireLoads>,
+    trial: ModelState,
+    rhs: Mat<f64>,
+    delta: Vec<f64>,
+    triplets: Vec<Triplet<usize, usize, f64>>,
+}
+
+impl Newton {
+    fn new(model: &FineModel, state: &ModelState) -> Self {
+        let n = 6 * model.segment_count();
+        Self {
+            n,
+            loads: model.load_buffers(),
+            trial: state.clone(),
+            rhs: Mat::<f64>::zeros(n, 1),
+            delta: vec![0.0; n],
+            triplets: Vec::new(),
+        }
+    }
+
+    /// Newton iterations at load factor `lambda` from `state` (histories frozen) until the
+    /// residual is within the allowance; returns (iterations, scaled residual).
+    fn solve(
+        &mut self,
+        model: &FineModel,
+        state: &mut ModelState,
+        lambda: f64,
+        options: &StaticOptions,
+        sc: &Scales,
+    ) -> Result<(usize, f64), (usize, Failure)> {
+        let n = self.n;
+        let Self {
+            loads,
+            trial,
+            rhs,
+            delta,
+            triplets,
+            ..
+        } = self;
+        model.compute_loads(state, lambda, loads);
+        let (mut rmax, mut r2, mut rel) = residual_norms(loads, sc);
         let mut it = 0;
         while rmax.is_nan() || rmax > 1.0 {
             if rmax.is_nan() {
-                return Err(StaticError::NonFinite { step });
+                return Err((it, Failure::NonFinite));
             }
             if it == options.max_iterations {
-                return Err(StaticError::NotConverged {
-                    step,
-                    residual: rel,
-                });
+                return Err((it, Failure::Stalled(rel)));
             }
             it += 1;
             // Right-hand side: the residual loads (K delta = r).
             let mut s = 0;
-            for l in &loads {
+            for l in loads.iter() {
                 for (f, t) in l.forces.iter().zip(&l.torques) {
                     for i in 0..3 {
                         rhs[(6 * s + i, 0)] = f[i];
@@ -279,39 +330,43 @@ pub fn solve_static_with_progress(
                     }
                 }
             }
-            let k = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &triplets).map_err(
-                |e| StaticError::Singular {
-                    step,
-                    message: format!("{e:?}"),
-                },
-            )?;
-            let lu = k.sp_lu().map_err(|e| StaticError::Singular {
-                step,
-                message: format!("{e:?}"),
-            })?;
+            let singular = |e: &dyn std::fmt::Debug| (it, Failure::Singular(format!("{e:?}")));
+            let k = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, triplets)
+                .map_err(|e| singular(&e))?;
+            let lu = k.sp_lu().map_err(|e| singular(&e))?;
             lu.solve_in_place_with_conj(Conj::No, rhs.as_mut());
             for i in 0..n {
                 delta[i] = rhs[(i, 0)];
             }
             if delta.iter().any(|d| !d.is_finite()) {
-                return Err(StaticError::Singular {
-                    step,
-                    message: "non-finite Newton increment".into(),
-                });
+                return Err(singular(&"non-finite Newton increment"));
+            }
+            // Trust region: the largest rotation and translation of a segment in one
+            // iteration are capped (the contact gaps are nonlinear in the rotations).
+            let (mut dx, mut dw) = (0.0f64, 0.0f64);
+            for d in delta.chunks_exact(6) {
+                dx = dx.max(Vector3::new(d[0], d[1], d[2]).norm());
+                dw = dw.max(Vector3::new(d[3], d[4], d[5]).norm());
+            }
+            let cap = 1.0f64
+                .min(options.max_rotation / dw)
+                .min(options.max_translation.map_or(1.0, |t| t / dx));
+            if cap < 1.0 {
+                delta.iter_mut().for_each(|d| *d *= cap);
             }
             // Backtracking line search: accept a step that lowers the total potential
             // (Armijo) or the scaled residual. The potential is the merit function far from
             // equilibrium: the residual of stiff axial springs grows with the second-order
             // gaps of a rotation step even when the step is good.
-            let potential0 = potential(&loads);
-            let slope: f64 = -dot_loads(&loads, &delta);
+            let potential0 = potential(loads);
+            let slope: f64 = -dot_loads(loads, delta);
             let mut alpha = 1.0;
             let mut accepted = false;
             for _ in 0..=options.max_backtracks {
-                apply_step(state, &delta, alpha, &mut trial);
-                model.compute_loads(&trial, lambda, &mut loads);
-                let (tmax, t2, trel) = residual_norms(&loads, &sc);
-                let armijo = potential(&loads) <= potential0 + 1e-4 * alpha * slope;
+                apply_step(state, delta, alpha, trial);
+                model.compute_loads(trial, lambda, loads);
+                let (tmax, t2, trel) = residual_norms(loads, sc);
+                let armijo = potential(loads) <= potential0 + 1e-4 * alpha * slope;
                 if armijo || t2 < (1.0 - 1e-4 * alpha) * r2 || tmax <= 1.0 {
                     rmax = tmax;
                     rel = trel;
@@ -322,29 +377,99 @@ pub fn solve_static_with_progress(
                 alpha *= 0.5;
             }
             if !accepted {
-                // Take the full step: near round-off the residual no longer decreases.
-                apply_step(state, &delta, 1.0, &mut trial);
-                model.compute_loads(&trial, lambda, &mut loads);
-                (rmax, r2, rel) = residual_norms(&loads, &sc);
+                // Take the (capped) full step: near round-off the residual no longer
+                // decreases.
+                apply_step(state, delta, 1.0, trial);
+                model.compute_loads(trial, lambda, loads);
+                (rmax, r2, rel) = residual_norms(loads, sc);
             }
             for (ws, wt) in state.wires.iter_mut().zip(&trial.wires) {
                 ws.poses.copy_from_slice(&wt.poses);
             }
         }
-        iterations += it;
-        residual = rel;
-        progress(lambda);
-        // The load step is accepted: commit the contact histories.
-        model.compute_loads(state, lambda, &mut loads);
-        model.commit_contacts(state, &loads);
-        trial.contacts.clone_from(&state.contacts);
-        trial.friction_work = state.friction_work;
+        Ok((it, rel))
+    }
+}
+
+/// [`solve_static`] reporting the load factor reached after every load step to `progress`.
+///
+/// Load stepping is adaptive: the load factor advances by `1 / load_steps` at most; when
+/// Newton fails at a load factor, the last converged state is restored and the increment
+/// halved (down to `min_increment`); after a load step converged in at most a quarter of
+/// `max_iterations` the increment doubles again (up to `1 / load_steps`).
+pub fn solve_static_with_progress(
+    model: &FineModel,
+    state: &mut ModelState,
+    options: &StaticOptions,
+    progress: &mut dyn FnMut(f64),
+) -> Result<StaticReport, StaticError> {
+    faer::set_global_parallelism(faer::Par::Seq);
+    let sc = scales(model, options);
+    let mut newton = Newton::new(model, state);
+    let full = 1.0 / options.load_steps.max(1) as f64;
+    let min_increment = options.min_increment.min(full);
+    let mut increment = full;
+    let mut reached = 0.0;
+    let mut saved = state.wires.clone();
+    let (mut steps, mut iterations, mut residual) = (0, 0, 0.0);
+    while reached < 1.0 {
+        let lambda = if reached + increment > 1.0 - 1e-12 {
+            1.0
+        } else {
+            reached + increment
+        };
+        let step = steps + 1;
+        match newton.solve(model, state, lambda, options, &sc) {
+            Ok((it, rel)) => {
+                iterations += it;
+                residual = rel;
+                steps = step;
+                reached = lambda;
+                progress(lambda);
+                // The load step is accepted: commit the contact histories.
+                model.compute_loads(state, lambda, &mut newton.loads);
+                model.commit_contacts(state, &newton.loads);
+                newton.trial.contacts.clone_from(&state.contacts);
+                newton.trial.friction_work = state.friction_work;
+                saved.clone_from(&state.wires);
+                if 4 * it <= options.max_iterations {
+                    increment = (2.0 * increment).min(full);
+                }
+            }
+            Err((it, failure)) => {
+                iterations += it;
+                // Back to the last converged state with half the increment.
+                for (ws, s) in state.wires.iter_mut().zip(&saved) {
+                    ws.poses.copy_from_slice(&s.poses);
+                }
+                increment *= 0.5;
+                if increment >= min_increment {
+                    continue;
+                }
+                return Err(match failure {
+                    Failure::Stalled(residual) => StaticError::NotConverged {
+                        step,
+                        load_factor: reached,
+                        residual,
+                    },
+                    Failure::NonFinite => StaticError::NonFinite {
+                        step,
+                        load_factor: reached,
+                    },
+                    Failure::Singular(message) => StaticError::Singular {
+                        step,
+                        load_factor: reached,
+                        message,
+                    },
+                });
+            }
+        }
     }
     Ok(StaticReport {
-        load_steps: options.load_steps.max(1),
+        load_steps: steps,
         iterations,
         residual,
-        roundoff,
+        roundoff: sc.roundoff,
         force_scale: sc.force,
         moment_scale: sc.moment,
     })
@@ -440,7 +565,10 @@ pub fn solve_relaxation(
             model.compute_loads(state, lambda, &mut loads);
             let (rmax, _, rel) = residual_norms(&loads, &sc);
             if rmax.is_nan() {
-                return Err(StaticError::NonFinite { step });
+                return Err(StaticError::NonFinite {
+                    step,
+                    load_factor: (step - 1) as f64 / steps as f64,
+                });
             }
             residual = rel;
             if rmax <= 1.0 {
@@ -449,6 +577,7 @@ pub fn solve_relaxation(
             if it == options.max_iterations {
                 return Err(StaticError::NotConverged {
                     step,
+                    load_factor: (step - 1) as f64 / steps as f64,
                     residual: rel,
                 });
             }
