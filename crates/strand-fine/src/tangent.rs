@@ -9,6 +9,7 @@ use rayon::prelude::*;
 use crate::contact::{self, ContactLoad};
 use crate::joint::perturb;
 use crate::model::{FineModel, ModelState};
+use crate::segment::Pose;
 
 /// Stiffness of one element (joint or anchor) on its segments.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,7 +42,9 @@ impl FineModel {
 
     /// Tangents of the contacts at `state` with the committed histories frozen: central
     /// differences of the contact loads over the wire segment and the paired core segment
-    /// (the consistent tangent of the stick or slip branch; zero for an open contact).
+    /// (the consistent tangent of the stick or slip branch; zero for an open contact). The
+    /// steps stay below a tenth of the distance to the branch's ends (zero gap, the
+    /// stick-slip limit): under a light load these are far below 1e-10 m.
     pub fn contact_tangents(&self, state: &ModelState) -> Vec<ElementTangent> {
         let offsets = self.segment_offsets();
         let core = &self.wires[0].chain;
@@ -65,10 +68,15 @@ impl FineModel {
                     );
                     let lj = core.segments[j].length;
                     let hc = h.core_segment.min(core_poses.len() - 1);
+                    // Loads are invariant under a translation of all bodies: evaluate about
+                    // the core segment's centre, where coordinates are small and a step of
+                    // 1e-15 m still moves them by many ulps.
+                    let origin = core_poses[j].position;
+                    let local = |pose: &Pose| Pose::new(pose.position - origin, pose.rotation);
                     let eval = |col: usize, step: f64| -> ContactLoad {
-                        let mut wp = wire;
-                        let mut cj = core_poses[j];
-                        let mut anchor = core_poses[hc];
+                        let mut wp = local(&wire);
+                        let mut cj = local(&core_poses[j]);
+                        let mut anchor = local(&core_poses[hc]);
                         if col < 6 {
                             perturb(&mut wp, col, step);
                         } else {
@@ -98,10 +106,25 @@ impl FineModel {
                         });
                         continue;
                     }
-                    let step_x = 1e-7 * w.chain.section.radius;
+                    // Steps: 1e-7 of the wire radius (and 1e-7 rad), shrunk to a tenth of the
+                    // distance to the nearest switch of the law (the penalty's kink at zero
+                    // gap, the stick-slip limit), so that the differences stay on one branch.
+                    let c0 = eval(0, 0.0);
+                    let law = &cp.law;
+                    let mut margin = c0.normal_force / law.normal_stiffness;
+                    let cap = law.friction * c0.normal_force;
+                    if cap > 0.0 {
+                        margin = margin.min(match c0.state {
+                            contact::ContactState::Slip => c0.slip_work / cap,
+                            _ => (cap - c0.tangential_force.norm()) / law.tangential_stiffness,
+                        });
+                    }
+                    let step_x0 = 1e-7 * w.chain.section.radius;
+                    let shrink = (0.1 * margin / step_x0).clamp(1e-5, 1.0);
+                    let step_x = step_x0 * shrink;
                     let mut k = SMatrix::<f64, 12, 12>::zeros();
                     for col in 0..12 {
-                        let hstep = if col % 6 < 3 { step_x } else { 1e-7 };
+                        let hstep = if col % 6 < 3 { step_x } else { 1e-7 * shrink };
                         let lp = eval(col, hstep);
                         let lm = eval(col, -hstep);
                         for (blk, (a, b)) in [
