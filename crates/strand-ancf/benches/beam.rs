@@ -94,6 +94,26 @@ fn integrators(c: &mut Criterion) {
     g.finish();
 }
 
+/// The section-3 pendulum of `validation/paper-fig14-pendulum.json`: 30 planar elements, 1 m,
+/// pinned, gravity 9.8 m/s^2.
+fn pendulum(kind: LawKind) -> Beam {
+    let s = section3(1.0);
+    Beam::new(
+        BeamSpec {
+            elements: 30,
+            bending_points: None,
+            mass_per_length: s.mass_per_length(),
+            element: ElementKind::Planar,
+            direction: [1.0, 0.0, 0.0],
+            gravity: [0.0, -9.8, 0.0],
+            start: Some(Support::Pinned),
+            end: None,
+        },
+        SectionLaw::new(&s, kind),
+    )
+    .unwrap()
+}
+
 /// The paper's section-3 pendulum exactly as `validation/paper-fig14-pendulum.json` sets it
 /// up (gravity 9.8 m/s^2, 1 s), solved by generalized-alpha at 1 ms steps (spectral radius
 /// 0.9, the scenes' default); only the solve is timed. See also `examples/pendulum_speed.rs`,
@@ -102,21 +122,7 @@ fn paper_pendulum(c: &mut Criterion) {
     let mut g = c.benchmark_group("paper-fig14 pendulum, 1 s, generalized-alpha 1 ms");
     g.sample_size(10);
     for kind in [LawKind::Constant, LawKind::Hysteretic] {
-        let s = section3(1.0);
-        let b = Beam::new(
-            BeamSpec {
-                elements: 30,
-                bending_points: None,
-                mass_per_length: s.mass_per_length(),
-                element: ElementKind::Planar,
-                direction: [1.0, 0.0, 0.0],
-                gravity: [0.0, -9.8, 0.0],
-                start: Some(Support::Pinned),
-                end: None,
-            },
-            SectionLaw::new(&s, kind),
-        )
-        .unwrap();
+        let b = pendulum(kind);
         let scheme = Scheme::GeneralizedAlpha {
             step: 1e-3,
             spectral_radius: 0.9,
@@ -136,21 +142,7 @@ fn paper_pendulum(c: &mut Criterion) {
 /// the mass matrix and the solve (every iteration).
 fn newton_iteration(c: &mut Criterion) {
     for kind in [LawKind::Constant, LawKind::Continuous, LawKind::Hysteretic] {
-        let s = section3(1.0);
-        let b = Beam::new(
-            BeamSpec {
-                elements: 30,
-                bending_points: None,
-                mass_per_length: s.mass_per_length(),
-                element: ElementKind::Planar,
-                direction: [1.0, 0.0, 0.0],
-                gravity: [0.0, -9.8, 0.0],
-                start: Some(Support::Pinned),
-                end: None,
-            },
-            SectionLaw::new(&s, kind),
-        )
-        .unwrap();
+        let b = pendulum(kind);
         let (k0, stretch) = (3.0, 1.0 + 2e-4);
         let mut q = b.reference().to_vec();
         let l = b.element_length();

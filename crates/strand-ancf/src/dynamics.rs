@@ -188,6 +188,16 @@ pub enum DynamicError {
     Setup(String),
 }
 
+/// Work dissipated over a step by the non-potential part of the stick/slip laws (J):
+/// `-energy_strain d eps` at every bending point between the states `old` and `new`
+/// (midpoint rule, SPEC 2).
+pub fn non_potential_work(old: &[PointState], new: &[PointState]) -> f64 {
+    old.iter()
+        .zip(new)
+        .map(|(a, b)| -0.5 * a.weight * (a.energy_strain + b.energy_strain) * (b.eps - a.eps))
+        .sum()
+}
+
 /// Bookkeeping shared by both integrators.
 struct Ledger {
     q0_gravity: f64,
@@ -224,12 +234,7 @@ impl Ledger {
 
     /// Adds the dissipation of an accepted step from the bending-point states.
     fn dissipate(&mut self, slip_work: f64, old: &[PointState], new: &[PointState]) {
-        let np: f64 = old
-            .iter()
-            .zip(new)
-            .map(|(a, b)| -0.5 * a.weight * (a.energy_strain + b.energy_strain) * (b.eps - a.eps))
-            .sum();
-        self.dissipated += slip_work + np;
+        self.dissipated += slip_work + non_potential_work(old, new);
     }
 
     fn energies(
@@ -584,13 +589,7 @@ fn alpha_step(
                 st.alg[i] += (1.0 - af) / (1.0 - am) * st.acc[i];
             }
             st.slip.copy_from_slice(&w.trial);
-            let non_potential: f64 = pts
-                .iter()
-                .zip(pts_new.iter())
-                .map(|(a, b)| {
-                    -0.5 * a.weight * (a.energy_strain + b.energy_strain) * (b.eps - a.eps)
-                })
-                .sum();
+            let non_potential = non_potential_work(pts, pts_new);
             pts.copy_from_slice(pts_new);
             Ok(StepOutcome {
                 iterations,

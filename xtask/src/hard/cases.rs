@@ -27,8 +27,6 @@ struct History {
     kappa_peak: (f64, f64, f64),
     /// Largest tip speed (m/s) and when (s).
     speed_peak: (f64, f64),
-    /// Total energy (J) at the first and last frame, and the largest |total - first|.
-    total: (f64, f64, f64),
     /// Every coordinate, velocity and point value seen was finite.
     finite: bool,
     /// (t, eps, kappa) at the first bending point (the root) at every frame.
@@ -36,8 +34,16 @@ struct History {
     /// State at the frame of the largest kinetic energy (the bottom of a swing, where the
     /// tension and with it the stick stiffness peak) and that energy (J).
     fastest: Option<(probe::Start, f64)>,
-    /// (t, total energy) at every frame.
+    /// (t, total energy (J)) at every frame.
     totals: Vec<(f64, f64)>,
+}
+
+impl History {
+    /// Total energy at the first and at the last frame (J).
+    fn total_ends(&self) -> (f64, f64) {
+        let at = |p: Option<&(f64, f64)>| p.map_or(0.0, |p| p.1);
+        (at(self.totals.first()), at(self.totals.last()))
+    }
 }
 
 /// Runs the dynamics of `beam` with `opts`, showing progress as `what`.
@@ -54,16 +60,8 @@ fn dynamic(
     let nd = beam.node_coords();
     let k = beam.spec().elements * nd;
     let dim = nd / 2;
-    let mut first = true;
     let s = run_dynamic(beam, opts, &mut |f| {
-        let total = f.energies.total();
-        if first {
-            h.total.0 = total;
-            first = false;
-        }
-        h.total.1 = total;
-        h.total.2 = h.total.2.max((total - h.total.0).abs());
-        h.totals.push((f.t, total));
+        h.totals.push((f.t, f.energies.total()));
         h.finite &= f.q.iter().chain(f.v).all(|x| x.is_finite())
             && f.points
                 .iter()
@@ -752,15 +750,9 @@ pub fn sudden_gravity(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
 
 /// The paper's pinned pendulum (Table 1 strand) for 100 s with generalized-alpha.
 pub fn long_run_100s(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
-    let scene = ctx.scene("long-run-100s")?;
-    let beam = build_beam(&scene, BeamModelKind::Equivalent)?;
-    let opts = dynamic_options(&scene).context("a dynamic scene")?;
-    let t = Instant::now();
-    let (s, h) = dynamic(ctx, &beam, &opts, "generalized-alpha")?;
-    let wall = t.elapsed().as_secs_f64();
-    let mut rows = dynamic_rows(ctx, &s, &h)?;
+    let (s, h, wall, mut rows) = timed_generalized_alpha(ctx, "long-run-100s")?;
     let scale = s.max_kinetic.max(f64::MIN_POSITIVE);
-    let e0 = h.total.0;
+    let (e0, e1) = h.total_ends();
     // Energy put in by the integrator: the largest rise of the total above its start.
     let rise = h.totals.iter().map(|(_, e)| e - e0).fold(0.0, f64::max) / scale;
     // Drift over the last tenth of the run: a bounded drift has settled by then.
@@ -770,14 +762,14 @@ pub fn long_run_100s(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
         .iter()
         .find(|(t, _)| *t >= 0.9 * end)
         .map_or(e0, |p| p.1);
-    let tail = (h.total.1 - late).abs() / scale;
+    let tail = (e1 - late).abs() / scale;
     rows.push(ctx.check("energy-rise", rise, "")?.with_note(format!(
         "largest total energy above the start {:+.3e} of the largest kinetic energy \
              ({:.3e} J); numerical damping removed {:.3e} J by the end; {} steps, {} Newton \
              iterations, {wall:.1} s",
         rise,
         s.max_kinetic,
-        e0 - h.total.1,
+        e0 - e1,
         s.steps,
         s.newton_iterations
     )));
@@ -793,20 +785,15 @@ pub fn long_run_100s(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
 }
 
 fn energy_drift(ctx: &Ctx, scene: &str) -> anyhow::Result<Vec<Row>> {
-    let scene = ctx.scene(scene)?;
-    let beam = build_beam(&scene, BeamModelKind::Equivalent)?;
-    let opts = dynamic_options(&scene).context("a dynamic scene")?;
-    let t = Instant::now();
-    let (s, h) = dynamic(ctx, &beam, &opts, "generalized-alpha")?;
-    let wall = t.elapsed().as_secs_f64();
-    let mut rows = dynamic_rows(ctx, &s, &h)?;
-    let drift = (h.total.1 - h.total.0) / s.max_kinetic.max(f64::MIN_POSITIVE);
+    let (s, h, wall, mut rows) = timed_generalized_alpha(ctx, scene)?;
+    let (e0, e1) = h.total_ends();
+    let drift = (e1 - e0) / s.max_kinetic.max(f64::MIN_POSITIVE);
     rows.push(
         ctx.check("energy-drift-at-end", drift.abs(), "")?
             .with_note(format!(
                 "total energy at the end minus at the start: {:.3e} J ({:+.3e} of the largest \
                  kinetic energy, {:.3e} J); {} steps, {} Newton iterations, {wall:.1} s",
-                h.total.1 - h.total.0,
+                e1 - e0,
                 drift,
                 s.max_kinetic,
                 s.steps,
@@ -814,6 +801,22 @@ fn energy_drift(ctx: &Ctx, scene: &str) -> anyhow::Result<Vec<Row>> {
             )),
     );
     Ok(rows)
+}
+
+/// Runs the equivalent model of scene `name` (generalized-alpha): its summary, history, wall
+/// time (s) and the common dynamic rows.
+fn timed_generalized_alpha(
+    ctx: &Ctx,
+    name: &str,
+) -> anyhow::Result<(DynamicSummary, History, f64, Vec<Row>)> {
+    let scene = ctx.scene(name)?;
+    let beam = build_beam(&scene, BeamModelKind::Equivalent)?;
+    let opts = dynamic_options(&scene).context("a dynamic scene")?;
+    let t = Instant::now();
+    let (s, h) = dynamic(ctx, &beam, &opts, "generalized-alpha")?;
+    let wall = t.elapsed().as_secs_f64();
+    let rows = dynamic_rows(ctx, &s, &h)?;
+    Ok((s, h, wall, rows))
 }
 
 // ---------------------------------------------------------------------------------------

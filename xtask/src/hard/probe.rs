@@ -12,6 +12,7 @@
 
 use strand_ancf::band::BandSolver;
 use strand_ancf::beam::{Beam, Evaluation, PointState};
+use strand_ancf::dynamics::non_potential_work;
 
 /// Velocity (m/s, or 1/s for slope coordinates) beyond which a run counts as blown up: far
 /// above anything a strand released from rest reaches in the few milliseconds of a probe.
@@ -176,14 +177,7 @@ pub fn verlet_stable(beam: &Beam, h: f64, steps: usize, start: &Start, scale: f6
         slip.copy_from_slice(&trial);
         // Slip work and the non-potential work of the law (midpoint rule), as the solver
         // books them.
-        dissipated += ev.slip_work
-            + pts
-                .iter()
-                .zip(&pts_new)
-                .map(|(a, b)| {
-                    -0.5 * a.weight * (a.energy_strain + b.energy_strain) * (b.eps - a.eps)
-                })
-                .sum::<f64>();
+        dissipated += ev.slip_work + non_potential_work(&pts, &pts_new);
         std::mem::swap(&mut pts, &mut pts_new);
         for i in 0..nf {
             v[i] += 0.5 * h * a[i];
