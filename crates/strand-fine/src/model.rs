@@ -20,15 +20,18 @@ use crate::contact::{self, ContactHistory, ContactLaw, ContactLoad, ContactOptio
 use crate::joint::JointSpring;
 use crate::segment::Pose;
 
-/// Boundary condition at one end of the strand; it acts on every wire.
+/// Boundary condition at one end of the strand.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Support {
     /// No support.
     #[default]
     Free,
-    /// End point and end rotation held.
+    /// End point and end rotation of every wire held.
     Clamped,
-    /// End point held, rotation free.
+    /// A pivoting end fitting: the core's end point held with its rotation free, and every
+    /// helical wire bound to the core's end segment ([`FineModel::bind_end`]), so the whole
+    /// section turns about the pin. Holding each wire's end point instead would let the layer
+    /// carry a bending moment as a couple of wire forces, which a pin does not.
     Pinned,
 }
 
@@ -195,15 +198,27 @@ impl FineModel {
                 )));
             }
         }
-        for w in &mut wires {
-            w.support(End::Start, start);
-            w.support(End::End, end);
+        for (i, w) in wires.iter_mut().enumerate() {
+            for (at, support) in [(End::Start, start), (End::End, end)] {
+                // Helical wires at a pin hang on the core's end segment (ties below).
+                if i == 0 || support != Support::Pinned {
+                    w.support(at, support);
+                }
+            }
         }
-        Self {
+        let mut model = Self {
             wires,
             gravity: Vector3::zeros(),
             ties: Vec::new(),
+        };
+        if model.wires.len() > 1 {
+            for (at, support) in [(End::Start, start), (End::End, end)] {
+                if support == Support::Pinned {
+                    model.bind_end(at);
+                }
+            }
         }
+        model
     }
 
     /// A single straight wire of section `section` and length `length` (m) along +X from the
@@ -670,5 +685,44 @@ mod tests {
         assert!(t <= 10.0 * ulp * k * l, "torque {t} vs {}", ulp * k * l);
         let e = m.energies(&state, &mut loads);
         assert!(e.spring < 1e-20, "{}", e.spring);
+    }
+    /// A pinned strand turned rigidly about its pin carries no load: the pin holds the core's
+    /// end point only and the helical wires turn with the core's end segment. (Holding every
+    /// wire's end point instead resists the turn with the wires' axial springs.)
+    #[test]
+    fn pinned_strand_turns_freely_about_its_pin() {
+        let m = FineModel::from_strand(
+            &table1(),
+            Discretisation {
+                core_segments: 30,
+                wire_segments: 30,
+            },
+            Support::Pinned,
+            Support::Free,
+        );
+        assert_eq!(m.ties.len(), 6);
+        assert_eq!(m.wires[0].anchors.len(), 1);
+        assert!(m.wires[1..].iter().all(|w| w.anchors.is_empty()));
+        let mut state = m.rest_state();
+        let g = UnitQuaternion::from_scaled_axis(Vector3::new(0.0, 0.0, 0.05));
+        for w in &mut state.wires {
+            for p in &mut w.poses {
+                *p = Pose::new(g * p.position, g * p.rotation);
+            }
+        }
+        let mut loads = m.load_buffers();
+        m.compute_loads(&state, 1.0, &mut loads);
+        let (f, _) = max_loads(&loads);
+        let (f0, _) = typical_force(&m);
+        assert!(f <= 1e-9 * f0, "force {f} vs {f0}");
+        // The same turn against a pin on every wire end: the wires' end springs resist.
+        let mut each = m.clone();
+        each.ties.clear();
+        for w in &mut each.wires[1..] {
+            w.support(End::Start, Support::Pinned);
+        }
+        each.compute_loads(&state, 1.0, &mut loads);
+        let (f_each, _) = max_loads(&loads);
+        assert!(f_each > 1e-3 * f0, "per-wire pins resist: {f_each} vs {f0}");
     }
 }
