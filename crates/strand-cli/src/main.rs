@@ -78,6 +78,30 @@ enum Command {
         #[arg(long = "model", value_name = "MODEL")]
         models: Vec<String>,
     },
+    /// Virtual bending test of the scene's strand with the fine model: pulled to a tension,
+    /// then bent along arcs of growing curvature; writes `DIR/bending.csv` (measured moment
+    /// and stiffness beside the scene's section law at the same strain and curvature) and
+    /// `DIR/summary.json`.
+    Bend {
+        /// Scene file (its `strand`, `law` and `models.fine.penetration` are used).
+        scene: PathBuf,
+        /// Axial tension T (N).
+        #[arg(long)]
+        tension: f64,
+        /// Curvatures (1/m), increasing, comma separated; default: 10 values from 0.2 to 20
+        /// times the law's smallest critical curvature at this tension.
+        #[arg(long, value_delimiter = ',')]
+        curvatures: Vec<f64>,
+        /// Strand length in pitches.
+        #[arg(long, default_value_t = 6)]
+        pitches: usize,
+        /// Segments per pitch of every wire.
+        #[arg(long, default_value_t = 12)]
+        segments_per_pitch: usize,
+        /// Output folder.
+        #[arg(long, default_value = "out/bending")]
+        out: PathBuf,
+    },
 }
 
 fn main() -> ExitCode {
@@ -107,7 +131,54 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             vtk,
             models,
         } => run_scene(&scene, out, vtk, &models),
+        Command::Bend {
+            scene,
+            tension,
+            curvatures,
+            pitches,
+            segments_per_pitch,
+            out,
+        } => bend(
+            &scene,
+            strand_scene::BendingOptions {
+                tension,
+                curvatures,
+                pitches,
+                segments_per_pitch,
+                out,
+            },
+        ),
     }
+}
+
+fn bend(path: &std::path::Path, opts: strand_scene::BendingOptions) -> anyhow::Result<()> {
+    let scene = Scene::load(path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let mut progress = Progress::new();
+    let result =
+        strand_scene::run_bending(&scene, &opts, &mut |_, f| progress.update("bending", f));
+    progress.bar.finish_and_clear();
+    let s = result?;
+    println!(
+        "virtual bending test of `{}`: T = {} N (strain {:.3e}), {} pitches, {} segments per pitch, {:.1} s",
+        s.scene, s.tension, s.strain, s.pitches, s.segments_per_pitch, s.wall_time
+    );
+    println!(
+        "K_min = {:.4e} N m^2, K_max = {:.4e} N m^2; law `{}`",
+        s.k_min, s.k_max, s.law
+    );
+    println!(
+        "{:>12} {:>12} {:>12} {:>10} {:>10}",
+        "kappa 1/m", "M fine N m", "M law N m", "K/K_max", "law/K_max"
+    );
+    for [k, m, ml] in &s.points {
+        println!(
+            "{k:>12.4e} {m:>12.4e} {ml:>12.4e} {:>10.4} {:>10.4}",
+            m / k / s.k_max,
+            ml / k / s.k_max
+        );
+    }
+    println!("wrote {}", opts.out.join("bending.csv").display());
+    Ok(())
 }
 
 /// A progress bar that shows itself on a terminal once a run has taken more than a second.

@@ -160,6 +160,15 @@ impl BendingTest {
         &self,
         strand: &Strand,
     ) -> Result<(Vec<BendingPoint>, FineModel, ModelState), BendingError> {
+        self.run_with_progress(strand, &mut |_| {})
+    }
+
+    /// As [`BendingTest::run_with_state`], calling `progress` with every measured point.
+    pub fn run_with_progress(
+        &self,
+        strand: &Strand,
+        progress: &mut dyn FnMut(&BendingPoint),
+    ) -> Result<(Vec<BendingPoint>, FineModel, ModelState), BendingError> {
         let layer = strand.layer().ok_or(BendingError::NoLayer)?;
         let pitch = layer.pitch;
         let length = pitch * self.pitches as f64;
@@ -266,7 +275,9 @@ impl BendingTest {
                     }
                 }
             }
-            out.push(self.measure(&model, &state, kappa, iterations, (lo, hi)));
+            let point = self.measure(&model, &state, kappa, iterations, (lo, hi));
+            progress(&point);
+            out.push(point);
         }
         Ok((out, model, state))
     }

@@ -3,12 +3,14 @@
 //! that builds and runs the models and writes the result files ([`output`]); shared by the
 //! `strand` command and the validation harness.
 
+mod bending;
 pub mod format;
 pub mod output;
 mod run;
 mod run_fine;
 mod scene;
 
+pub use bending::{BendingOptions, BendingSummary, run_bending};
 pub use run::{
     BeamModelKind, RunError, RunOptions, RunSummary, build_beam, dynamic_options, run_scene,
 };

@@ -1,0 +1,223 @@
+//! Virtual bending test of a scene's strand (SPEC 4): the fine model, pulled to a tension and
+//! bent along circular arcs of growing curvature ([`strand_fine::BendingTest`]), measures its
+//! moment-curvature curve; beside it, the equivalent section law of the scene (eq. (28)) at
+//! the same strain and curvature, averaged over one pitch (the wires' phases turn once per
+//! pitch, and the fine model's moment is measured over the middle pitches).
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use serde::Serialize;
+use strand_core::{SectionLaw, Strand};
+use strand_fine::{BendingPoint, BendingTest, ContactOptions, StaticOptions};
+
+use crate::output::Csv;
+use crate::run::{RunError, io_err};
+use crate::scene::Scene;
+
+/// Controls of a virtual bending test.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BendingOptions {
+    /// Axial tension T (N), applied first and held.
+    pub tension: f64,
+    /// Curvatures of the load steps (1/m), increasing; empty: 10 values from 0.2 to 20 times
+    /// the smallest critical curvature of the section law at `tension`.
+    pub curvatures: Vec<f64>,
+    /// Strand length in pitches (at least 3).
+    pub pitches: usize,
+    /// Segments per pitch of every wire.
+    pub segments_per_pitch: usize,
+    /// Output folder.
+    pub out: PathBuf,
+}
+
+/// What a bending test wrote in `summary.json`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BendingSummary {
+    /// Scene name.
+    pub scene: String,
+    /// Section law the fine curve is compared with.
+    pub law: String,
+    /// Tension T (N).
+    pub tension: f64,
+    /// Axial strain of the tension, T / EA_eq (-).
+    pub strain: f64,
+    /// All-slip bending stiffness K_min (N m^2).
+    pub k_min: f64,
+    /// All-stick bending stiffness K_max (N m^2).
+    pub k_max: f64,
+    /// Smallest critical curvature of the law over a pitch at this tension (1/m).
+    pub first_slip_curvature: Option<f64>,
+    /// Strand length in pitches, segments per pitch.
+    pub pitches: usize,
+    /// Segments per pitch of every wire.
+    pub segments_per_pitch: usize,
+    /// Wall time (s).
+    pub wall_time: f64,
+    /// Curvature, fine moment and law moment of every point (1/m, N m, N m).
+    pub points: Vec<[f64; 3]>,
+}
+
+/// Phase stations sampled over one pitch for the law's average.
+const STATIONS: usize = 48;
+
+/// The law's moment (N m) at strain `eps` and curvature `kappa` (1/m), bent from straight,
+/// averaged over `STATIONS` stations of one pitch; and the smallest critical curvature there.
+fn law_moment(law: &SectionLaw, strand: &Strand, eps: f64, kappa: f64) -> (f64, Option<f64>) {
+    let pitch = strand.layer().map_or(strand.length(), |l| l.pitch);
+    let slip = vec![0.0; law.state_len()];
+    let mut trial = slip.clone();
+    let (mut sum, mut first) = (0.0, None::<f64>);
+    for i in 0..STATIONS {
+        let st = law.station(pitch * (i as f64 + 0.5) / STATIONS as f64);
+        sum += law.planar(&st, eps, kappa, &slip, &mut trial).moment;
+        for w in law.planar_wires(&st, eps, kappa, &slip) {
+            if let Some(c) = w.critical_curvature {
+                first = Some(first.map_or(c, |f| f.min(c)));
+            }
+        }
+    }
+    (sum / STATIONS as f64, first)
+}
+
+/// Runs the virtual bending test on `scene`'s strand and writes `DIR/bending.csv` and
+/// `DIR/summary.json`; `progress` receives each measured point.
+pub fn run_bending(
+    scene: &Scene,
+    opts: &BendingOptions,
+    progress: &mut dyn FnMut(&BendingPoint, f64),
+) -> Result<BendingSummary, RunError> {
+    let strand = &scene.strand;
+    if strand.layer().is_none() {
+        return Err(invalid(
+            "strand.layers: the bending test needs a helical layer",
+        ));
+    }
+    if !(opts.tension.is_finite() && opts.tension > 0.0) {
+        return Err(invalid(format!(
+            "--tension must be positive and finite, got {}",
+            opts.tension
+        )));
+    }
+    if opts.pitches < 3 || opts.segments_per_pitch < 4 {
+        return Err(invalid(format!(
+            "--pitches must be at least 3 and --segments-per-pitch at least 4, got {} and {}",
+            opts.pitches, opts.segments_per_pitch
+        )));
+    }
+    let law = SectionLaw::new(strand, scene.law);
+    let eps = opts.tension / strand.axial_stiffness();
+    let first = law_moment(&law, strand, eps, 1e-9).1;
+    let curvatures = if opts.curvatures.is_empty() {
+        let k0 = first.unwrap_or(1.0 / strand.length());
+        (0..10)
+            .map(|i| 0.2 * k0 * 100f64.powf(i as f64 / 9.0))
+            .collect()
+    } else {
+        opts.curvatures.clone()
+    };
+    if curvatures.iter().any(|k| !k.is_finite() || *k <= 0.0)
+        || curvatures.windows(2).any(|w| w[1] <= w[0])
+    {
+        return Err(invalid(format!(
+            "--curvatures must be positive and increasing, got {curvatures:?}"
+        )));
+    }
+    let contact = ContactOptions {
+        penetration: scene.models.fine.map_or(1e-3, |f| f.penetration),
+        ..ContactOptions::default()
+    };
+    let test = BendingTest {
+        pitches: opts.pitches,
+        segments_per_pitch: opts.segments_per_pitch,
+        tension: opts.tension,
+        curvatures: curvatures.clone(),
+        contact,
+        friction: strand.friction(),
+        statics: StaticOptions {
+            load_steps: 1,
+            tolerance: 1e-8,
+            max_iterations: 60,
+            force_scale: Some(opts.tension),
+            ..Default::default()
+        },
+        max_halvings: 6,
+    };
+    let last = *curvatures.last().expect("at least one curvature");
+    let start = Instant::now();
+    let (curve, _, _) = test
+        .run_with_progress(strand, &mut |p| progress(p, p.imposed_curvature / last))
+        .map_err(|e| RunError::Solve {
+            model: "fine".into(),
+            message: format!("bending test: {e}"),
+            dir: opts.out.display().to_string(),
+        })?;
+    let wall_time = start.elapsed().as_secs_f64();
+
+    std::fs::create_dir_all(&opts.out).map_err(io_err(&opts.out))?;
+    let path = opts.out.join("bending.csv");
+    let mut csv = Csv::create(
+        &path,
+        &[
+            "imposed_curvature",
+            "curvature",
+            "moment",
+            "law_moment",
+            "stiffness",
+            "law_stiffness",
+            "clamp_moment",
+            "tension",
+            "stick",
+            "slip",
+            "open",
+        ],
+    )
+    .map_err(io_err(&path))?;
+    let mut points = Vec::new();
+    for p in curve.iter().filter(|p| p.imposed_curvature > 0.0) {
+        let m_law = law_moment(&law, strand, eps, p.curvature).0;
+        csv.row(&[
+            p.imposed_curvature,
+            p.curvature,
+            p.moment,
+            m_law,
+            p.secant_stiffness(),
+            m_law / p.curvature,
+            p.clamp_moment,
+            p.tension,
+            p.stick as f64,
+            p.slip as f64,
+            p.open as f64,
+        ])
+        .map_err(io_err(&path))?;
+        points.push([p.curvature, p.moment, m_law]);
+    }
+    csv.finish().map_err(io_err(&path))?;
+    let summary = BendingSummary {
+        scene: scene.name.clone(),
+        law: scene.law.to_string(),
+        tension: opts.tension,
+        strain: eps,
+        k_min: strand.min_bending_stiffness(),
+        k_max: strand.max_bending_stiffness(),
+        first_slip_curvature: first,
+        pitches: opts.pitches,
+        segments_per_pitch: opts.segments_per_pitch,
+        wall_time,
+        points,
+    };
+    write_json(&opts.out.join("summary.json"), &summary)?;
+    Ok(summary)
+}
+
+fn invalid(message: impl Into<String>) -> RunError {
+    RunError::Setup {
+        model: "fine".into(),
+        message: message.into(),
+    }
+}
+
+fn write_json(path: &Path, value: &impl Serialize) -> Result<(), RunError> {
+    let text = serde_json::to_string_pretty(value).expect("summary serializes");
+    std::fs::write(path, text + "\n").map_err(io_err(path))
+}
