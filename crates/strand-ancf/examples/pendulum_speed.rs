@@ -141,10 +141,24 @@ fn main() {
         };
         // PENDULUM_ONLY=STEP: one generalized-alpha run of that step, untimed against a
         // reference (for profiling).
+        // PENDULUM_REPEAT=N: best of N runs there; PENDULUM_TIPS=FILE: the tip every 10 ms
+        // and the final coordinates written to FILE (to compare trajectories between builds).
         if let Ok(only) = std::env::var("PENDULUM_ONLY") {
             let step: f64 = only.parse().expect("PENDULUM_ONLY is a step in seconds");
-            let (s, t, e, _) = timed(&b, alpha(step, RHO), 1, None);
+            let repeat = std::env::var("PENDULUM_REPEAT")
+                .map_or(1, |v| v.parse().expect("PENDULUM_REPEAT is a count"));
+            let (s, t, e, tips) = timed(&b, alpha(step, RHO), repeat, None);
             report(&format!("gen-alpha {step:.1e} s rho {RHO}"), &s, t, e);
+            if let Ok(path) = std::env::var("PENDULUM_TIPS") {
+                let mut out = String::new();
+                for p in &tips {
+                    out += &format!("tip {:e} {:e}\n", p[0], p[1]);
+                }
+                for v in &s.q {
+                    out += &format!("q {v:e}\n");
+                }
+                std::fs::write(format!("{path}.{law}"), out).expect("PENDULUM_TIPS is writable");
+            }
             continue;
         }
         // The reference always uses the default quadrature.
