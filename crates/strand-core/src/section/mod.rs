@@ -82,6 +82,8 @@ struct LayerLaw {
     radius: f64,
     /// eta E_w A_w (N).
     k: f64,
+    /// 1 / k (1/N).
+    inv_k: f64,
     /// eta A_w E_w cos^2(alpha) (N): friction limit per unit strand strain and unit gain.
     cap_per_strain: f64,
     /// mu sin(alpha).
@@ -121,6 +123,18 @@ pub struct Station {
     pub x: f64,
     /// Helical wires at this station.
     pub wires: Vec<WireStation>,
+    /// What the planar law reads of each wire, one array per quantity: the lever
+    /// `R_w cos(phi)` (m) and the capstan gains (stretched, shortened), so that the per-wire
+    /// loop of [`SectionLaw::planar`] reads contiguous values and has no branches.
+    planar: PlanarWires,
+}
+
+/// The planar law's per-wire constants of a station, as parallel arrays.
+#[derive(Debug, Clone, PartialEq, Default)]
+struct PlanarWires {
+    lever: Vec<f64>,
+    gain_pos: Vec<f64>,
+    gain_neg: Vec<f64>,
 }
 
 /// Response of the section to a strain and a curvature vector (units: N, N m, J/m).
@@ -214,6 +228,7 @@ impl SectionLaw {
                     wires: l.wires(),
                     radius: l.radius,
                     k: l.wire_axial_stiffness(),
+                    inv_k: 1.0 / l.wire_axial_stiffness(),
                     cap_per_strain: l.eta * w.area() * w.material.youngs_modulus * c2,
                     capstan: strand.friction() * a.sin(),
                     paper_factor: c2,
@@ -290,7 +305,12 @@ impl SectionLaw {
                 .collect(),
             _ => Vec::new(),
         };
-        Station { x, wires }
+        let planar = PlanarWires {
+            lever: wires.iter().map(|w| w.lever[1]).collect(),
+            gain_pos: wires.iter().map(|w| w.gains[0]).collect(),
+            gain_neg: wires.iter().map(|w| w.gains[1]).collect(),
+        };
+        Station { x, wires, planar }
     }
 
     /// Friction limits (stretched, shortened) per unit gain: eta A_w sigma_a (N), with
@@ -327,6 +347,33 @@ impl SectionLaw {
         };
         let Some(law) = self.layer else { return r };
         let (scale, dscale) = self.cap_scale(eps);
+        match self.kind {
+            LawKind::Continuous => {
+                planar_continuous(law.k, law.inv_k, &st.planar, kappa, scale, dscale, &mut r);
+            }
+            LawKind::Hysteretic if slip.len() == st.wires.len() && trial.len() == slip.len() => {
+                let p = &st.planar;
+                planar_hysteretic(
+                    law.k, law.inv_k, p, kappa, scale, dscale, slip, trial, &mut r,
+                );
+            }
+            _ => self.planar_wires_generic(law, st, kappa, (scale, dscale), slip, trial, &mut r),
+        }
+        r
+    }
+
+    /// The wires' part of [`Self::planar`] through the generic slider (any law, optional slip
+    /// state), added to `r`.
+    fn planar_wires_generic(
+        &self,
+        law: LayerLaw,
+        st: &Station,
+        kappa: f64,
+        (scale, dscale): (f64, f64),
+        slip: &[f64],
+        trial: &mut [f64],
+        r: &mut PlanarResponse,
+    ) {
         for (i, w) in st.wires.iter().enumerate() {
             let lever = w.lever[1];
             let f = self.slide(law, i, lever * kappa, scale, w.gains, slip, trial);
@@ -340,7 +387,6 @@ impl SectionLaw {
             r.slip_work += f.slip_work;
             r.slipping += usize::from(f.state == WireState::Slip);
         }
-        r
     }
 
     /// Evaluates the law for a curvature vector `kappa = (kappa_y, kappa_z)` (1/m) in the
@@ -560,6 +606,102 @@ impl SectionLaw {
     }
 }
 
+/// The wires' part of [`SectionLaw::planar`] for the `continuous` law, added to `r`: the
+/// slider of `slider.rs` inlined over parallel arrays (the same values, summed in the same
+/// order), without the per-wire law dispatch and optional slip state of the generic loop.
+#[inline(always)]
+fn planar_continuous(
+    k: f64,
+    inv_k: f64,
+    w: &PlanarWires,
+    kappa: f64,
+    scale: f64,
+    dscale: f64,
+    r: &mut PlanarResponse,
+) {
+    let n = w.lever.len();
+    let (lev, gp, gn) = (&w.lever[..n], &w.gain_pos[..n], &w.gain_neg[..n]);
+    for i in 0..n {
+        let lever = lev[i];
+        let e = lever * kappa;
+        let (cap_pos, cap_neg) = (scale * gp[i], scale * gn[i]);
+        let stick_force = k * e;
+        // Slipping on the stretched (k e > cap_pos) or the shortened (k e < -cap_neg) side.
+        let pos = stick_force > cap_pos;
+        let neg = stick_force < -cap_neg;
+        if !(pos || neg) {
+            r.moment += stick_force * lever;
+            r.moment_curvature += k * lever * lever;
+            r.energy += 0.5 * stick_force * stick_force * inv_k;
+            continue;
+        }
+        // Held at the limit: energy 1/2 k e_c^2 + cap (|e| - e_c), e_c = cap / k.
+        let (cap, gain, sign) = if pos {
+            (cap_pos, gp[i], 1.0)
+        } else {
+            (cap_neg, gn[i], -1.0)
+        };
+        let ec = cap * inv_k;
+        r.moment += sign * cap * lever;
+        r.moment_strain += sign * gain * dscale * lever;
+        r.energy += 0.5 * cap * ec + cap * (e.abs() - ec);
+        r.energy_strain += (e.abs() - ec) * (gain * dscale);
+        r.slipping += 1;
+    }
+}
+
+/// The wires' part of [`SectionLaw::planar`] for the `hysteretic` law (return mapping from the
+/// committed `slip` into `trial`), added to `r`: the slider of `slider.rs` inlined over
+/// parallel arrays (the same values, summed in the same order).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn planar_hysteretic(
+    k: f64,
+    inv_k: f64,
+    w: &PlanarWires,
+    kappa: f64,
+    scale: f64,
+    dscale: f64,
+    slip: &[f64],
+    trial: &mut [f64],
+    r: &mut PlanarResponse,
+) {
+    let n = w.lever.len();
+    let (lev, gp, gn) = (&w.lever[..n], &w.gain_pos[..n], &w.gain_neg[..n]);
+    let (slip, trial) = (&slip[..n], &mut trial[..n]);
+    for i in 0..n {
+        let lever = lev[i];
+        let e = lever * kappa;
+        let (cap_pos, cap_neg) = (scale * gp[i], scale * gn[i]);
+        let committed = slip[i];
+        let elastic = k * (e - committed);
+        let pos = elastic > cap_pos;
+        let neg = elastic < -cap_neg;
+        if !(pos || neg) {
+            trial[i] = committed;
+            r.moment += elastic * lever;
+            r.moment_curvature += k * lever * lever;
+            r.energy += 0.5 * elastic * elastic * inv_k;
+            continue;
+        }
+        // Return mapping: the slip puts the wire on its friction limit. The stored energy is
+        // 1/2 F^2 / k; the slip work books the energy change of a moving limit (no
+        // energy_strain term).
+        let (cap, gain, force) = if pos {
+            (cap_pos, gp[i], cap_pos)
+        } else {
+            (cap_neg, -gn[i], -cap_neg)
+        };
+        let s = e - force * inv_k;
+        trial[i] = s;
+        r.moment += force * lever;
+        r.moment_strain += gain * dscale * lever;
+        r.energy += 0.5 * cap * cap * inv_k;
+        r.slip_work += cap * (s - committed).abs();
+        r.slipping += 1;
+    }
+}
+
 /// Reference half of the neutral axis for a curvature vector: the unit vector along `kappa`
 /// with a non-negative z component (+y when `kappa_z = 0`); +z for zero curvature.
 fn neutral_axis(kappa: [f64; 2]) -> [f64; 2] {
@@ -573,4 +715,53 @@ fn neutral_axis(kappa: [f64; 2]) -> [f64; 2] {
         -1.0
     };
     [s * kappa[0] / n, s * kappa[1] / n]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::StrandSpec;
+
+    /// The inlined planar loops of the `continuous` and `hysteretic` laws give exactly the
+    /// generic slider's values, sticking and slipping on both sides.
+    #[test]
+    fn inlined_planar_loops_match_the_slider() {
+        let strand = Strand::new(StrandSpec::paper(1.0, 2.0e9, 5747.0)).unwrap();
+        for kind in [LawKind::Continuous, LawKind::Hysteretic] {
+            let law = SectionLaw::new(&strand, kind);
+            let layer = law.layer.unwrap();
+            let n = law.sliders();
+            let mut count = [0usize; 2];
+            for j in 0..400 {
+                let st = law.station(0.0137 * j as f64);
+                let eps = 1e-4 * ((j % 7) as f64 - 2.0);
+                let kappa = 0.05 * ((j * 37 % 101) as f64 - 50.0);
+                let slip: Vec<f64> = (0..n)
+                    .map(|i| 1e-5 * (((i * 13 + j * 7) % 11) as f64 - 5.0))
+                    .collect();
+                let slip = if kind.has_state() { slip } else { Vec::new() };
+                let (mut t_fast, mut t_gen) = (vec![0.0; slip.len()], vec![0.0; slip.len()]);
+                let fast = law.planar(&st, eps, kappa, &slip, &mut t_fast);
+                let mut generic = PlanarResponse {
+                    moment_curvature: law.base_bending,
+                    moment: law.base_bending * kappa,
+                    ..fast
+                };
+                (
+                    generic.moment_strain,
+                    generic.energy_strain,
+                    generic.slip_work,
+                    generic.slipping,
+                ) = (0.0, 0.0, 0.0, 0);
+                generic.energy =
+                    0.5 * law.axial_stiffness * eps * eps + 0.5 * law.base_bending * kappa * kappa;
+                let sd = law.cap_scale(eps);
+                law.planar_wires_generic(layer, &st, kappa, sd, &slip, &mut t_gen, &mut generic);
+                assert_eq!(fast, generic, "{kind} at station {j}");
+                assert_eq!(t_fast, t_gen);
+                count[usize::from(fast.slipping > 0 && fast.slipping < n)] += 1;
+            }
+            assert!(count[0] > 0 && count[1] > 0, "{kind}: {count:?}");
+        }
+    }
 }
