@@ -168,6 +168,22 @@ impl BandMatrix {
     /// Factorizes in place into `P A = L U` (row pivots in `pivots`); `false` if singular
     /// or not finite.
     fn factorize_in_place(&mut self, pivots: &mut Vec<usize>, scale: f64) -> bool {
+        match (self.kl, self.ku) {
+            (7, 7) => self.factorize_in_place_fixed::<15>(pivots, scale),
+            (11, 11) => self.factorize_in_place_fixed::<23>(pivots, scale),
+            _ => self.factorize_in_place_fixed::<0>(pivots, scale),
+        }
+    }
+
+    /// [`Self::factorize_in_place`] with the pivot row's `N = kl + ku + 1` entries from the
+    /// diagonal on as fixed-size arrays where the band is full (`N = 0`: no fixed size). The
+    /// same operations in the same order.
+    #[inline(always)]
+    fn factorize_in_place_fixed<const N: usize>(
+        &mut self,
+        pivots: &mut Vec<usize>,
+        scale: f64,
+    ) -> bool {
         let (n, kl, ku) = (self.n, self.kl, self.ku);
         let w = self.width();
         pivots.clear();
@@ -196,6 +212,22 @@ impl BandMatrix {
                 rk.swap_with_slice(&mut tail[o..o + rk.len()]);
             }
             let pivot = rk[0];
+            if N > 0 && rk.len() == N {
+                let rk: &[f64; N] = (&*rk).try_into().expect("N entries");
+                for i in k + 1..=last_row {
+                    // Row i from column k on: offset kl - (i - k).
+                    let o = (i - k - 1) * w + kl - (i - k);
+                    let ri: &mut [f64; N] = (&mut tail[o..o + N]).try_into().expect("N entries");
+                    let l = ri[0] / pivot;
+                    ri[0] = l;
+                    if l != 0.0 {
+                        for c in 1..N {
+                            ri[c] -= l * rk[c];
+                        }
+                    }
+                }
+                continue;
+            }
             for i in k + 1..=last_row {
                 // Row i from column k on: offset kl - (i - k).
                 let o = (i - k - 1) * w + kl - (i - k);
@@ -252,6 +284,17 @@ impl Ldlt {
     /// Factorizes the symmetric `a`; `false` if a pivot is not positive (beyond round-off of
     /// `scale`), i.e. `a` is not numerically positive definite.
     fn factorize(&mut self, a: &BandMatrix, scale: f64) -> bool {
+        match a.kl {
+            7 => self.factorize_fixed::<7>(a, scale),
+            11 => self.factorize_fixed::<11>(a, scale),
+            _ => self.factorize_fixed::<0>(a, scale),
+        }
+    }
+
+    /// [`Self::factorize`] with the column updates unrolled for the half-bandwidth `B = b`
+    /// where the band is full (`B = 0`: no fixed size); the same operations in the same order.
+    #[inline(always)]
+    fn factorize_fixed<const B: usize>(&mut self, a: &BandMatrix, scale: f64) -> bool {
         let (n, b) = (a.n, a.kl);
         let (w, bw) = (a.width(), b + 1);
         self.n = n;
@@ -281,6 +324,30 @@ impl Ldlt {
             self.inv_diag[k] = inv;
             let hi = (k + b).min(n - 1);
             let m = hi - k;
+            if B > 0 && m == B {
+                // Rows k + 1 ..= k + B of the band, as one slice.
+                let rows = &mut work[(k + 1) * bw..(k + 1 + B) * bw];
+                let mut c = [0.0; B];
+                // Column k below the diagonal: a_jk (kept for the update) and l_jk = a_jk / d_k.
+                for t in 0..B {
+                    // Row k + 1 + t holds column k at offset b - 1 - t.
+                    let e = &mut rows[t * bw + B - 1 - t];
+                    c[t] = *e;
+                    *e *= inv;
+                }
+                // a_ij -= l_ik a_jk for k < j <= i <= k + b.
+                for t in 0..B {
+                    let row = &mut rows[t * bw..(t + 1) * bw];
+                    let lik = row[B - 1 - t];
+                    if lik != 0.0 {
+                        // Columns k + 1 ..= i at offsets b - t ..= b.
+                        for u in 0..=t {
+                            row[B - t + u] -= lik * c[u];
+                        }
+                    }
+                }
+                continue;
+            }
             // Column k below the diagonal: a_jk (kept for the update) and l_jk = a_jk / d_k.
             let c = &mut self.col[..m];
             for (t, ct) in c.iter_mut().enumerate() {
@@ -415,7 +482,24 @@ impl BandSolver {
 }
 
 fn solve_factored(a: &BandMatrix, pivots: &[usize], b: &mut [f64]) {
+    match (a.kl, a.ku) {
+        (7, 7) => solve_factored_fixed::<7, 14>(a, pivots, b),
+        (11, 11) => solve_factored_fixed::<11, 22>(a, pivots, b),
+        _ => solve_factored_fixed::<0, 0>(a, pivots, b),
+    }
+}
+
+/// [`solve_factored`] with `L`'s columns (`KL = kl` entries) and `U`'s rows (`KU2 = kl + ku`
+/// entries right of the diagonal) as fixed-size arrays where the band is full (0: no fixed
+/// size); the same operations in the same order.
+#[inline(always)]
+fn solve_factored_fixed<const KL: usize, const KU2: usize>(
+    a: &BandMatrix,
+    pivots: &[usize],
+    b: &mut [f64],
+) {
     let (n, kl, ku) = (a.n, a.kl, a.ku);
+    let w = a.width();
     // Forward: apply the row swaps and L.
     for k in 0..n {
         let p = pivots[k];
@@ -425,8 +509,16 @@ fn solve_factored(a: &BandMatrix, pivots: &[usize], b: &mut [f64]) {
         let bk = b[k];
         if bk != 0.0 {
             // Entry (i, k) of row i sits at offset k + kl - i: one row down is w - 1 further.
-            let step = a.width() - 1;
+            let step = w - 1;
             let mut idx = a.index(k, k) + step;
+            if KL > 0 && k + KL < n {
+                let bs: &mut [f64; KL] = (&mut b[k + 1..=k + KL]).try_into().expect("KL");
+                for bi in bs.iter_mut() {
+                    *bi -= a.data[idx] * bk;
+                    idx += step;
+                }
+                continue;
+            }
             for bi in &mut b[k + 1..=(k + kl).min(n - 1)] {
                 *bi -= a.data[idx] * bk;
                 idx += step;
@@ -437,12 +529,20 @@ fn solve_factored(a: &BandMatrix, pivots: &[usize], b: &mut [f64]) {
     for i in (0..n).rev() {
         let hi = (i + kl + ku).min(n - 1);
         let row = a.index(i, i);
-        let upper = &a.data[row + 1..=row + (hi - i)];
         // Sequential subtraction (not a separate sum): the ill-conditioned statics of very
         // thin strands (EA L^2 / EI = 1e7) are sensitive to the rounding of this loop.
         let mut s = b[i];
-        for (u, x) in upper.iter().zip(&b[i + 1..=hi]) {
-            s -= u * x;
+        if KU2 > 0 && hi == i + KU2 {
+            let upper: &[f64; KU2] = a.data[row + 1..=row + KU2].try_into().expect("KU2");
+            let xs: &[f64; KU2] = b[i + 1..=hi].try_into().expect("KU2");
+            for t in 0..KU2 {
+                s -= upper[t] * xs[t];
+            }
+        } else {
+            let upper = &a.data[row + 1..=row + (hi - i)];
+            for (u, x) in upper.iter().zip(&b[i + 1..=hi]) {
+                s -= u * x;
+            }
         }
         b[i] = s / a.data[row];
     }
