@@ -538,8 +538,10 @@ impl Beam {
             t.fill(0.0);
         }
         let mut ev = Evaluation::default();
-        // The non-symmetric part of the tangent, if any.
-        let mut unsym: Option<PlanarMatrix> = None;
+        // The non-symmetric part of the tangent, if any, as the element-size factors of its
+        // rank-one terms per axial point (see the bending points).
+        let mut coupling = [PlanarVector::zeros(); AXIAL_POINTS];
+        let mut coupled = false;
         // Axial points: reduced quadrature.
         let mut eps_a = [0.0; AXIAL_POINTS];
         let mut eps_q = [PlanarVector::zeros(); AXIAL_POINTS];
@@ -621,18 +623,20 @@ impl Beam {
                 }
                 planar::add_hessian_lower(t, w, &bp.qp.row, &h);
                 if r.moment_strain != 0.0 {
-                    // d M / d eps_bar couples the curvature here to the axial points.
-                    let gk = planar::scatter_gradient(&bp.qp.row, &b2.grad);
-                    let mut ge = PlanarVector::zeros();
+                    // d M / d eps_bar couples the curvature here to the axial points:
+                    // w M_eps kappa_q eps_bar_q^T with eps_bar_q = sum_j interp_j eps_q[j].
+                    // Summed per axial point j over the bending points, then one rank-one
+                    // update per axial point for the element.
+                    let c = w * r.moment_strain;
                     for j in 0..AXIAL_POINTS {
-                        ge += eps_q[j] * bp.interp[j];
+                        planar::add_gradient(
+                            &mut coupling[j],
+                            c * bp.interp[j],
+                            &bp.qp.row,
+                            &b2.grad,
+                        );
                     }
-                    unsym.get_or_insert_with(PlanarMatrix::zeros).ger(
-                        w * r.moment_strain,
-                        &gk,
-                        &ge,
-                        1.0,
-                    );
+                    coupled = true;
                 }
             } else {
                 let (k, grad) = pt.bending_first().map_err(kin)?;
@@ -665,8 +669,10 @@ impl Beam {
         }
         if let Some(t) = tangent {
             planar::mirror_lower(t);
-            if let Some(u) = &unsym {
-                *t += u;
+            if coupled {
+                for j in 0..AXIAL_POINTS {
+                    t.ger(1.0, &coupling[j], &eps_q[j], 1.0);
+                }
             }
         }
         if !f.iter().all(|v| v.is_finite()) {
@@ -676,7 +682,7 @@ impl Beam {
                 quantity: "elastic force",
             });
         }
-        Ok((f, ev, unsym.is_none()))
+        Ok((f, ev, !coupled))
     }
 }
 
