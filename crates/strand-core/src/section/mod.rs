@@ -325,6 +325,7 @@ impl SectionLaw {
     /// Evaluates the law for a signed planar curvature `kappa` (1/m, `kappa_z`) at strain
     /// `eps`. `slip` is the station's committed slip state and `trial` receives the trial state
     /// (both of length [`Self::state_len`]; empty slices for laws without state).
+    #[inline]
     pub fn planar(
         &self,
         st: &Station,
