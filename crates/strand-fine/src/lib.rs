@@ -37,6 +37,7 @@ pub mod dynamics;
 pub mod joint;
 pub mod model;
 pub mod segment;
+pub mod settle;
 pub mod so3;
 pub mod statics;
 pub mod tangent;
@@ -53,6 +54,9 @@ pub use model::{
     WireState,
 };
 pub use segment::{Pose, Segment};
+pub use settle::{
+    SettleError, SettleOptions, SettleReport, SettledOptions, SettledReport, settle, solve_settled,
+};
 pub use statics::{
     RelaxationOptions, StaticError, StaticOptions, StaticReport, solve_relaxation, solve_static,
     solve_static_with_progress,

@@ -43,6 +43,12 @@ pub struct StaticOptions {
     pub max_rotation: f64,
     /// Largest translation of a segment in one Newton iteration (m); `None`: no cap.
     pub max_translation: Option<f64>,
+    /// The line search also accepts a step that lowers the total potential (Armijo). Right
+    /// far from equilibrium on conservative loads; with many slipping contacts (whose
+    /// forces have no potential) it accepts steps that raise the residual, so the polish
+    /// of a settled state ([`mod@crate::settle`]) turns it off and accepts residual decrease
+    /// only.
+    pub potential_descent: bool,
 }
 
 impl Default for StaticOptions {
@@ -56,6 +62,7 @@ impl Default for StaticOptions {
             min_increment: 1e-4,
             max_rotation: 0.1,
             max_translation: None,
+            potential_descent: true,
         }
     }
 }
@@ -113,17 +120,17 @@ pub enum StaticError {
     },
 }
 
-struct Scales {
-    force: f64,
-    moment: f64,
-    force_allowance: f64,
-    moment_allowance: f64,
-    roundoff: f64,
+pub(crate) struct Scales {
+    pub(crate) force: f64,
+    pub(crate) moment: f64,
+    pub(crate) force_allowance: f64,
+    pub(crate) moment_allowance: f64,
+    pub(crate) roundoff: f64,
 }
 
 /// Residual measures: (largest ratio to the allowance, 2-norm scaled by the reference
 /// loads, largest scaled load).
-fn residual_norms(loads: &[WireLoads], sc: &Scales) -> (f64, f64, f64) {
+pub(crate) fn residual_norms(loads: &[WireLoads], sc: &Scales) -> (f64, f64, f64) {
     let mut ratio: f64 = 0.0;
     let mut max: f64 = 0.0;
     let mut sq = 0.0;
@@ -183,7 +190,7 @@ fn apply_step(base: &ModelState, delta: &[f64], alpha: f64, out: &mut ModelState
 }
 
 /// Residual scales and allowances of `options` for `model`.
-fn scales(model: &FineModel, options: &StaticOptions) -> Scales {
+pub(crate) fn scales(model: &FineModel, options: &StaticOptions) -> Scales {
     let segs = model.wires.iter().flat_map(|w| w.chain.segments.iter());
     let g = model.gravity.norm();
     let weight = segs.clone().map(|s| s.mass * g).fold(0.0, f64::max);
@@ -355,7 +362,7 @@ impl Newton {
                 delta.iter_mut().for_each(|d| *d *= cap);
             }
             // Backtracking line search: accept a step that lowers the total potential
-            // (Armijo) or the scaled residual. The potential is the merit function far from
+            // (Armijo, if `potential_descent`) or the scaled residual. The potential is the merit function far from
             // equilibrium: the residual of stiff axial springs grows with the second-order
             // gaps of a rotation step even when the step is good.
             let potential0 = potential(loads);
@@ -366,7 +373,8 @@ impl Newton {
                 apply_step(state, delta, alpha, trial);
                 model.compute_loads(trial, lambda, loads);
                 let (tmax, t2, trel) = residual_norms(loads, sc);
-                let armijo = potential(loads) <= potential0 + 1e-4 * alpha * slope;
+                let armijo = options.potential_descent
+                    && potential(loads) <= potential0 + 1e-4 * alpha * slope;
                 if armijo || t2 < (1.0 - 1e-4 * alpha) * r2 || tmax <= 1.0 {
                     rmax = tmax;
                     rel = trel;

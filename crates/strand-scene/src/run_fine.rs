@@ -31,7 +31,10 @@ use crate::output::{Csv, FrameFiles, number};
 use crate::run::{RunError, RunOptions, RunSummary, finish, io_err};
 use crate::scene::{Analysis, End, IntegratorKind, Scene, SupportKind};
 
-/// Safety factor on the explicit stable step of the fine model.
+/// Safety factor on the explicit stable step of the fine model. (With the step at 0.9 of
+/// the linear limit instead, the Fig. 8 clamped pendulum stays stable but its energy balance,
+/// spoilt by contacts slipping fast at the root near t = 0.38 s, degrades from 1e-4 to 9e-3 of
+/// the largest kinetic energy.)
 const STEP_SAFETY: f64 = 0.9;
 
 fn support(scene: &Scene, end: End) -> fine::Support {
@@ -209,6 +212,9 @@ fn run_static(
     summary: &mut RunSummary,
     progress: &mut dyn FnMut(f64),
 ) -> Result<(), String> {
+    if model.contact_count() > 0 {
+        return run_settle(model, state, summary, progress);
+    }
     let opts = fine::StaticOptions {
         load_steps,
         ..fine::StaticOptions::default()
@@ -224,6 +230,58 @@ fn run_static(
          segment weight",
         report.residual
     ));
+    Ok(())
+}
+
+/// Statics with contacts: damped motion to rest, then Newton ([`fine::solve_settled`]);
+/// Newton load stepping from the straight strand stalls where weight-loaded contacts near
+/// zero gap switch state between iterations.
+fn run_settle(
+    model: &FineModel,
+    state: &mut ModelState,
+    summary: &mut RunSummary,
+    progress: &mut dyn FnMut(f64),
+) -> Result<(), String> {
+    let opts = fine::SettledOptions::default();
+    let t0 = Instant::now();
+    let mut first = None;
+    let report = fine::solve_settled(model, state, &opts, &mut |_, _, ratio| {
+        // Progress: the residual's fall to its allowance, on a log scale.
+        let r0 = *first.get_or_insert(ratio.max(10.0));
+        progress((r0 / ratio.max(1.0)).ln() / r0.ln());
+    });
+    summary.wall_time_s = t0.elapsed().as_secs_f64();
+    let r = report.map_err(|e| e.to_string())?;
+    let s = &r.settle;
+    summary.steps = s.steps as usize;
+    summary.time_step = Some(s.time_step);
+    summary.newton_iterations = r.polish.map_or(0, |p| p.iterations);
+    summary.built.push(format!(
+        "static equilibrium with contacts: damped motion from rest (gravity ramped over \
+         {:.3} s, mass-proportional damping at {:.3} 1/s, {} explicit steps of {:.3e} s, \
+         {:.3} s), then Newton from the settled state",
+        opts.settle
+            .ramp_time
+            .unwrap_or(2.0 / s.damping_rate.max(f64::MIN_POSITIVE)),
+        s.damping_rate,
+        s.steps,
+        s.time_step,
+        s.time,
+    ));
+    summary.built.push(match r.polish {
+        Some(p) => format!(
+            "converged: every segment's force and torque within {:.0e} of the largest segment \
+             weight {:.3e} N (plus round-off {:.1e} N) after {} Newton iterations (largest \
+             scaled load {:.2e})",
+            opts.polish.tolerance, p.force_scale, p.roundoff, p.iterations, p.residual
+        ),
+        None => format!(
+            "converged by the damped motion: every segment's force and torque within {:.0e} of \
+             the largest segment weight {:.3e} N (largest scaled load {:.2e}); Newton from the \
+             settled state stalled on contacts switching state between iterations",
+            r.tolerance, s.force_scale, r.residual
+        ),
+    });
     Ok(())
 }
 

@@ -1,0 +1,69 @@
+//! Statics with contacts and friction ([`strand_fine::solve_settled`]): a short Table 1
+//! strand clamped horizontally under gravity reaches rest within the stated residual, and its
+//! tip deflection lies between those of the all-slip (K_min) and all-stick (K_max) elastica
+//! (constant EI, inextensible: the independent shooting solution).
+
+use nalgebra::Vector3;
+use strand_core::{Strand, StrandSpec};
+use strand_elastica::{Cantilever, ConstantEi, Options, solve};
+use strand_fine::{
+    ContactOptions, Discretisation, FineModel, SettledOptions, Support, solve_settled,
+};
+
+#[test]
+fn short_strand_settles_between_the_all_slip_and_all_stick_elastica() {
+    let (length, g) = (0.1, 8.0);
+    let strand = Strand::new(StrandSpec::paper(length, 2.0e8, 7801.0)).unwrap();
+    let mut m = FineModel::from_strand(
+        &strand,
+        Discretisation {
+            core_segments: 12,
+            wire_segments: 12,
+        },
+        Support::Clamped,
+        Support::Free,
+    );
+    m.add_contacts(&strand, &ContactOptions::default());
+    m.gravity = Vector3::new(0.0, -g, 0.0);
+    let mut state = m.rest_state();
+    let t = std::time::Instant::now();
+    let opts = SettledOptions::default();
+    let r = solve_settled(&m, &mut state, &opts, &mut |_, _, _| {}).unwrap();
+    let tip = *m.core_centreline(&state).last().unwrap();
+    println!(
+        "settled in {:.3} s of motion ({} steps), Newton {:?} iterations, residual {:.2e} \
+         (tolerance {:.0e}); tip ({:.6}, {:.6}) m; {:.1} s",
+        r.settle.time,
+        r.settle.steps,
+        r.polish.map(|p| p.iterations),
+        r.residual,
+        r.tolerance,
+        tip.x,
+        tip.y,
+        t.elapsed().as_secs_f64()
+    );
+    assert!(
+        r.residual <= r.tolerance.max(1e-6),
+        "residual {:e}",
+        r.residual
+    );
+    let q = strand.mass_per_length() * g;
+    let drop = |ei: f64| {
+        let s = solve(
+            &Cantilever::new(length, q),
+            &ConstantEi::new(ei),
+            &Options::default(),
+        )
+        .unwrap();
+        -s.tip_displacement()[1]
+    };
+    let (stick, slip) = (
+        drop(strand.max_bending_stiffness()),
+        drop(strand.min_bending_stiffness()),
+    );
+    println!(
+        "tip drop {:.6} m; all-stick {stick:.6} m, all-slip {slip:.6} m",
+        -tip.y
+    );
+    assert!(-tip.y > stick && -tip.y < slip);
+}
