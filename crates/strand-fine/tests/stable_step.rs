@@ -123,4 +123,3 @@ fn strand_with_contacts_keeps_its_energy_at_the_estimated_step() {
         "balance error {worst:e} J against a drop {drop:e} J"
     );
 }
-

@@ -19,10 +19,11 @@ use anyhow::{Context, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use strand_scene::{Analysis, RunOptions, RunSummary, Scene, run_scene};
 
+use crate::pareto::metrics::Tip;
 use checks::BeamKind;
 use machine::Provenance;
 use report::{Report, Row};
-use tolerances::{CheckSpec, ConvergenceTol, Tolerances};
+use tolerances::{CheckSpec, ConvergenceTol, TimeStepTol, Tolerances};
 
 /// Options of `cargo xtask validate`.
 #[derive(Debug, Clone, Default, clap::Args)]
@@ -314,6 +315,7 @@ impl SceneRun<'_> {
                 }
             }
             CheckSpec::ConvergenceOrder(t) => rows.extend(self.convergence(t)),
+            CheckSpec::TimeStepOrder(t) => rows.extend(self.time_step_order(t)),
             CheckSpec::Golden(t) => {
                 let length = self.scene.strand.length();
                 let dynamic = matches!(self.scene.analysis, Analysis::Dynamic(_));
@@ -457,6 +459,60 @@ impl SceneRun<'_> {
                 e[1],
                 e[2],
                 checks::observed_order(errors[0].max, errors[1].max)
+            )),
+        ]
+    }
+}
+
+impl SceneRun<'_> {
+    /// Dynamics of the equivalent model with time steps h, h/2, h/4: the observed order of
+    /// the largest tip distance over the output times between successive runs (the finer
+    /// run's tip interpolated at the coarser run's output times).
+    fn time_step_order(&self, t: &TimeStepTol) -> Vec<Row> {
+        const CHECK: &str = "time-step-order";
+        let name = self.scene.name.clone();
+        let fail = |why: String| vec![Row::failed(&name, CHECK, "order", why)];
+        let mut tips = Vec::new();
+        for &h in &t.time_steps {
+            let mut file = self.scene.file.clone();
+            if file.models.equivalent.is_none() {
+                return fail("the scene has no equivalent model".into());
+            }
+            file.models.traditional = None;
+            file.models.fine = None;
+            file.analysis.time_step = Some(h);
+            let scene = match Scene::from_file(file) {
+                Ok(s) => s,
+                Err(e) => return fail(format!("time step {h:e} s: {e}")),
+            };
+            let dir = self.out.join("time-step-order").join(format!("h{h:e}"));
+            let label = format!("{name} time step {h:e} s");
+            if let Err(e) = self.run(&scene, &dir, &label) {
+                return fail(format!("time step {h:e} s: {e:#}"));
+            }
+            match Tip::load(&dir.join("equivalent")) {
+                Ok(tip) => tips.push(tip),
+                Err(e) => return fail(format!("{e:#}")),
+            }
+        }
+        let largest =
+            |a: &Tip, b: &Tip| a.distance_to(b).iter().fold(0.0f64, |m, &(_, d)| m.max(d));
+        let (d1, d2) = (largest(&tips[0], &tips[1]), largest(&tips[1], &tips[2]));
+        let order = checks::observed_order(d1, d2);
+        let h = &t.time_steps;
+        vec![
+            Row::measured(
+                &name,
+                CHECK,
+                "order",
+                order,
+                "",
+                report::Bound::AtLeast(t.order),
+            )
+            .with_note(format!(
+                "largest tip distance over the output times {d1:.2e} m between time steps \
+                 {:e} and {:e} s, {d2:.2e} m between {:e} and {:e} s",
+                h[0], h[1], h[1], h[2]
             )),
         ]
     }

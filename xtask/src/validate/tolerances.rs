@@ -19,12 +19,13 @@ use anyhow::{Context, bail};
 use serde::{Deserialize, Serialize, de::DeserializeOwned};
 
 /// Names of the checks a tolerance entry may list.
-pub const CHECK_NAMES: [&str; 7] = [
+pub const CHECK_NAMES: [&str; 8] = [
     "equivalent-vs-elastica",
     "traditional-vs-elastica",
     "paper-tension",
     "energy-balance",
     "convergence-order",
+    "time-step-order",
     "golden",
     "equivalent-vs-fine",
 ];
@@ -107,6 +108,22 @@ pub struct ConvergenceTol {
     pub quick: Option<bool>,
 }
 
+/// Observed convergence order of the equivalent model's dynamics in the time step.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct TimeStepTol {
+    /// Time steps h, h/2, h/4 (s), each half the previous.
+    pub time_steps: Vec<f64>,
+    /// Smallest acceptable observed order log2(d(h, h/2) / d(h/2, h/4)), with d the largest
+    /// tip distance over the output times between two runs.
+    pub order: f64,
+    /// Why this limit.
+    pub why: String,
+    /// Run this check in `--quick`.
+    #[serde(default)]
+    pub quick: Option<bool>,
+}
+
 /// Regression against the stored golden results.
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -135,6 +152,8 @@ pub enum CheckSpec {
     EnergyBalance(EnergyTol),
     /// Convergence order in elements of the equivalent model's statics.
     ConvergenceOrder(ConvergenceTol),
+    /// Convergence order in the time step of the equivalent model's dynamics.
+    TimeStepOrder(TimeStepTol),
     /// Regression against `golden/`.
     Golden(GoldenTol),
     /// Equivalent model against the fine model.
@@ -150,6 +169,7 @@ impl CheckSpec {
             CheckSpec::PaperTension(_) => "paper-tension",
             CheckSpec::EnergyBalance(_) => "energy-balance",
             CheckSpec::ConvergenceOrder(_) => "convergence-order",
+            CheckSpec::TimeStepOrder(_) => "time-step-order",
             CheckSpec::Golden(_) => "golden",
             CheckSpec::EquivalentVsFine(_) => "equivalent-vs-fine",
         }
@@ -163,6 +183,7 @@ impl CheckSpec {
             CheckSpec::PaperTension(t) => t.quick,
             CheckSpec::EnergyBalance(t) => t.quick,
             CheckSpec::ConvergenceOrder(t) => t.quick,
+            CheckSpec::TimeStepOrder(t) => t.quick,
             CheckSpec::Golden(t) => t.quick,
         }
     }
@@ -176,6 +197,7 @@ impl CheckSpec {
             CheckSpec::PaperTension(t) => &t.why,
             CheckSpec::EnergyBalance(t) => &t.why,
             CheckSpec::ConvergenceOrder(t) => &t.why,
+            CheckSpec::TimeStepOrder(t) => &t.why,
             CheckSpec::Golden(t) => &t.why,
         }
     }
@@ -281,6 +303,7 @@ impl Tolerances {
                     "paper-tension" => CheckSpec::PaperTension(typed(&scene, name, v)?),
                     "energy-balance" => CheckSpec::EnergyBalance(typed(&scene, name, v)?),
                     "convergence-order" => CheckSpec::ConvergenceOrder(typed(&scene, name, v)?),
+                    "time-step-order" => CheckSpec::TimeStepOrder(typed(&scene, name, v)?),
                     "golden" => CheckSpec::Golden(typed(&scene, name, v)?),
                     "equivalent-vs-fine" => CheckSpec::EquivalentVsFine(typed(&scene, name, v)?),
                     _ => unreachable!("names checked above"),
@@ -345,6 +368,22 @@ fn validate_spec(scene: &str, spec: &CheckSpec) -> anyhow::Result<()> {
                 bail!(
                     "{}: must be three element counts n, 2n, 4n, got {e:?}",
                     at("elements")
+                );
+            }
+        }
+        CheckSpec::TimeStepOrder(t) => {
+            positive(t.order, &at("order"))?;
+            let h = &t.time_steps;
+            let halves = |a: f64, b: f64| (a - 2.0 * b).abs() <= 1e-9 * a;
+            if h.len() != 3
+                || h[0].is_nan()
+                || h[0] <= 0.0
+                || !halves(h[0], h[1])
+                || !halves(h[1], h[2])
+            {
+                bail!(
+                    "{}: must be three time steps h, h/2, h/4 (s), got {h:?}",
+                    at("time_steps")
                 );
             }
         }
