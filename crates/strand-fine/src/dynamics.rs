@@ -23,7 +23,8 @@ use crate::model::{Energies, FineModel, ModelState, WireLoads};
 /// direction instead, the bound was 2.1-7.6 times the exact highest frequency on the Table 1
 /// strand at 77-10 segments per wire; block by block it is 1.3-1.6 times.)
 pub fn highest_frequency(model: &FineModel, state: &ModelState) -> f64 {
-    let mut blocks: Vec<(f64, Matrix3<f64>)> = Vec::with_capacity(model.segment_count());
+    // B per segment: m^{-1/2} I on the translations, R I^{-1/2} R^T on the rotations.
+    let mut blocks: Vec<SMatrix<f64, 6, 6>> = Vec::with_capacity(model.segment_count());
     for (w, s) in model.wires.iter().zip(&state.wires) {
         for (seg, p) in w.chain.segments.iter().zip(&s.poses) {
             let r = p.rotation.to_rotation_matrix();
@@ -32,28 +33,14 @@ pub fn highest_frequency(model: &FineModel, state: &ModelState) -> f64 {
                 seg.transverse_inertia.sqrt().recip(),
                 seg.transverse_inertia.sqrt().recip(),
             ));
-            blocks.push((
-                seg.mass.sqrt().recip(),
-                r.matrix() * d * r.matrix().transpose(),
-            ));
+            let mut b = SMatrix::<f64, 6, 6>::zeros();
+            b.fixed_view_mut::<3, 3>(0, 0)
+                .copy_from(&(Matrix3::identity() * seg.mass.sqrt().recip()));
+            b.fixed_view_mut::<3, 3>(3, 3)
+                .copy_from(&(r.matrix() * d * r.matrix().transpose()));
+            blocks.push(b);
         }
     }
-    // B K_ab B for the 6x6 block (a, b) of one segment pair.
-    let scaled = |k: &SMatrix<f64, 6, 6>, a: usize, b: usize| -> SMatrix<f64, 6, 6> {
-        let (ma, ia) = &blocks[a];
-        let (mb, ib) = &blocks[b];
-        let mut out = SMatrix::<f64, 6, 6>::zeros();
-        let kk = |r, c| k.fixed_view::<3, 3>(r, c).into_owned();
-        out.fixed_view_mut::<3, 3>(0, 0)
-            .copy_from(&(kk(0, 0) * (ma * mb)));
-        out.fixed_view_mut::<3, 3>(0, 3)
-            .copy_from(&(kk(0, 3) * ib * *ma));
-        out.fixed_view_mut::<3, 3>(3, 0)
-            .copy_from(&(ia * kk(3, 0) * *mb));
-        out.fixed_view_mut::<3, 3>(3, 3)
-            .copy_from(&(ia * kk(3, 3) * ib));
-        out
-    };
     // The assembled 6x6 blocks (summed before taking absolute values: the diagonal blocks
     // of neighbouring joints partly cancel).
     let mut elements = model.joint_tangents(state);
@@ -79,7 +66,7 @@ pub fn highest_frequency(model: &FineModel, state: &ModelState) -> f64 {
             k += assembled[i].1;
             i += 1;
         }
-        let b = scaled(&k, key.0, key.1);
+        let b = blocks[key.0] * k * blocks[key.1];
         for r in 0..6 {
             rows[6 * key.0 + r] += b.row(r).iter().map(|v| v.abs()).sum::<f64>();
         }

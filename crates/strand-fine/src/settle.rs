@@ -71,6 +71,8 @@ pub struct SettleReport {
     pub time_step: f64,
     /// Damping rate (1/s).
     pub damping_rate: f64,
+    /// Time over which gravity rose to its full value (s).
+    pub ramp_time: f64,
     /// Final scaled residual `max(|F| / F_ref, |T| / (F_ref l_ref))` (-).
     pub residual: f64,
     /// Largest ratio of a segment's force or torque to its allowance (<= 1) (-).
@@ -165,6 +167,7 @@ pub fn settle(
                     time: int.time,
                     time_step: dt,
                     damping_rate: gamma,
+                    ramp_time: ramp,
                     residual,
                     allowance_ratio: ratio,
                     force_scale: sc.force,

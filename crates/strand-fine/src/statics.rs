@@ -362,9 +362,9 @@ impl Newton {
                 delta.iter_mut().for_each(|d| *d *= cap);
             }
             // Backtracking line search: accept a step that lowers the total potential
-            // (Armijo, if `potential_descent`) or the scaled residual. The potential is the merit function far from
-            // equilibrium: the residual of stiff axial springs grows with the second-order
-            // gaps of a rotation step even when the step is good.
+            // (Armijo, if `potential_descent`) or the scaled residual. The potential is the
+            // merit function far from equilibrium: the residual of stiff axial springs grows
+            // with the second-order gaps of a rotation step even when the step is good.
             let potential0 = potential(loads);
             let slope: f64 = -dot_loads(loads, delta);
             let mut alpha = 1.0;

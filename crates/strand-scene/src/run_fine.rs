@@ -260,13 +260,7 @@ fn run_settle(
         "static equilibrium with contacts: damped motion from rest (gravity ramped over \
          {:.3} s, mass-proportional damping at {:.3} 1/s, {} explicit steps of {:.3e} s, \
          {:.3} s), then Newton from the settled state",
-        opts.settle
-            .ramp_time
-            .unwrap_or(2.0 / s.damping_rate.max(f64::MIN_POSITIVE)),
-        s.damping_rate,
-        s.steps,
-        s.time_step,
-        s.time,
+        s.ramp_time, s.damping_rate, s.steps, s.time_step, s.time,
     ));
     summary.built.push(match r.polish {
         Some(p) => format!(

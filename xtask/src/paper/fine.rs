@@ -78,7 +78,8 @@ pub fn fig7(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Findin
     let mut missing = None;
     for (i, run) in runs.iter().enumerate() {
         let g = gravity(&run.scene);
-        let eq = Centerline::load(&run.model("equivalent").map_err(anyhow::Error::msg)?)?;
+        let eq_dir = run.model("equivalent").map_err(anyhow::Error::msg)?;
+        let eq = Centerline::load(&eq_dir)?;
         shapes.push(Series::xy(
             format!("equivalent, g = {g}"),
             &eq.x,
@@ -103,10 +104,7 @@ pub fn fig7(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Findin
                 worst = worst.max(d);
                 ours.push(format!("g = {g}: {} m at s = {at:.3} m", sci(d)));
                 let k_min = run.scene.strand.min_bending_stiffness();
-                if let (Ok(f), Ok(e)) = (
-                    root_stiffness(&dir),
-                    root_stiffness(&run.model("equivalent").map_err(anyhow::Error::msg)?),
-                ) {
+                if let (Ok(f), Ok(e)) = (root_stiffness(&dir), root_stiffness(&eq_dir)) {
                     root.push(format!(
                         "g = {g}: fine {:.3}, equivalent {:.3}",
                         f / k_min,

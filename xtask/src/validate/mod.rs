@@ -17,6 +17,7 @@ use std::time::Instant;
 
 use anyhow::{Context, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use strand_scene::format::SceneFile;
 use strand_scene::{Analysis, RunOptions, RunSummary, Scene, run_scene};
 
 use crate::pareto::metrics::Tip;
@@ -400,6 +401,25 @@ impl SceneRun<'_> {
         scene
     }
 
+    /// Runs the scene with only its equivalent model, its file changed by `edit`, into `dir`:
+    /// the variants of the convergence checks.
+    fn run_equivalent_variant(
+        &self,
+        edit: impl FnOnce(&mut SceneFile),
+        dir: &Path,
+        label: &str,
+    ) -> anyhow::Result<Vec<RunSummary>> {
+        let mut file = self.scene.file.clone();
+        if file.models.equivalent.is_none() {
+            bail!("the scene has no equivalent model");
+        }
+        file.models.traditional = None;
+        file.models.fine = None;
+        edit(&mut file);
+        let scene = Scene::from_file(file)?;
+        self.run(&scene, dir, label)
+    }
+
     /// Statics of the equivalent model with n, 2n, 4n elements against the elastica: the
     /// observed order of the largest distance between 2n and 4n.
     fn convergence(&self, t: &ConvergenceTol) -> Vec<Row> {
@@ -412,20 +432,14 @@ impl SceneRun<'_> {
         };
         let mut errors = Vec::new();
         for &n in &t.elements {
-            let mut file = self.scene.file.clone();
-            let Some(eq) = file.models.equivalent.as_mut() else {
-                return fail("the scene has no equivalent model".into());
-            };
-            eq.elements = n as i64;
-            file.models.traditional = None;
-            file.models.fine = None;
-            let scene = match Scene::from_file(file) {
-                Ok(s) => s,
-                Err(e) => return fail(format!("{n} elements: {e}")),
-            };
             let dir = self.out.join("convergence").join(format!("n{n}"));
             let label = format!("{name} convergence n={n}");
-            let summary = match self.run(&scene, &dir, &label) {
+            let edit = |f: &mut SceneFile| {
+                if let Some(eq) = f.models.equivalent.as_mut() {
+                    eq.elements = n as i64;
+                }
+            };
+            let summary = match self.run_equivalent_variant(edit, &dir, &label) {
                 Ok(s) => s,
                 Err(e) => return fail(format!("{n} elements: {e:#}")),
             };
@@ -462,9 +476,7 @@ impl SceneRun<'_> {
             )),
         ]
     }
-}
 
-impl SceneRun<'_> {
     /// Dynamics of the equivalent model with time steps h, h/2, h/4: the observed order of
     /// the largest tip distance over the output times between successive runs (the finer
     /// run's tip interpolated at the coarser run's output times).
@@ -474,20 +486,10 @@ impl SceneRun<'_> {
         let fail = |why: String| vec![Row::failed(&name, CHECK, "order", why)];
         let mut tips = Vec::new();
         for &h in &t.time_steps {
-            let mut file = self.scene.file.clone();
-            if file.models.equivalent.is_none() {
-                return fail("the scene has no equivalent model".into());
-            }
-            file.models.traditional = None;
-            file.models.fine = None;
-            file.analysis.time_step = Some(h);
-            let scene = match Scene::from_file(file) {
-                Ok(s) => s,
-                Err(e) => return fail(format!("time step {h:e} s: {e}")),
-            };
             let dir = self.out.join("time-step-order").join(format!("h{h:e}"));
             let label = format!("{name} time step {h:e} s");
-            if let Err(e) = self.run(&scene, &dir, &label) {
+            let edit = |f: &mut SceneFile| f.analysis.time_step = Some(h);
+            if let Err(e) = self.run_equivalent_variant(edit, &dir, &label) {
                 return fail(format!("time step {h:e} s: {e:#}"));
             }
             match Tip::load(&dir.join("equivalent")) {
