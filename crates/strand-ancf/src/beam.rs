@@ -21,10 +21,11 @@ use nalgebra::{DMatrix, Vector2, Vector3, Vector4};
 use strand_core::{SectionLaw, Station};
 
 use crate::band::BandMatrix;
-use crate::error::AncfError;
+use crate::error::{AncfError, check_stretch};
 use crate::load::{planar_gravity, spatial_gravity};
 use crate::mass::{planar_mass, spatial_mass};
 use crate::planar::{self, PlanarAxial, PlanarCoords, PlanarMatrix, PlanarPoint, PlanarVector};
+use crate::scatter;
 use crate::shape::{QuadraturePoint, ShapeRow, element_quadrature, gauss_legendre};
 use crate::spatial::{
     self, SectionFrame, SpatialCoords, SpatialMatrix, SpatialPoint, SpatialSection, SpatialVector,
@@ -430,8 +431,12 @@ impl Beam {
             let (ke, ev, sym): (&[f64], Evaluation, bool) = match self.spec.element {
                 ElementKind::Planar => {
                     let qe = self.planar_coords(q, e);
-                    let (f, ev, sym) =
-                        self.element_planar(e, rule, &qe, sl, tr, want_k.then_some(&mut kp), pts)?;
+                    let (f, ev, sym) = if want_k {
+                        self.element_planar(e, rule, &qe, sl, tr, Some(&mut kp), pts)?
+                    } else {
+                        let (f, ev) = self.planar_forces(e, rule, &qe, sl, tr, pts)?;
+                        (f, ev, true)
+                    };
                     for a in 0..8 {
                         force[e * nd + a] += f[a];
                     }
@@ -683,6 +688,136 @@ impl Beam {
             });
         }
         Ok((f, ev, !coupled))
+    }
+}
+
+impl Beam {
+    /// Forces of one planar element without the tangent: the quantities of
+    /// [`Beam::element_planar`] with only what the forces need. Per point only `r'` (axial
+    /// points) or `r'` and `r''` (bending points) are formed, and the hourglass term's strain
+    /// gradients are folded into the scatter of each point's own force, so every point is
+    /// mapped to the element coordinates once. This is the evaluation of every Newton
+    /// iteration that keeps its matrix and of every explicit step.
+    fn planar_forces(
+        &self,
+        e: usize,
+        rule: &ElementRule,
+        qe: &PlanarCoords,
+        slip: &[f64],
+        trial: &mut [f64],
+        mut points: Option<&mut [PointState]>,
+    ) -> Result<(PlanarVector, Evaluation), BeamError> {
+        let kin = |source| BeamError::Kinematics { element: e, source };
+        let q = qe.as_slice();
+        let ea = self.law.axial_stiffness();
+        let mut f = [0.0; 8];
+        let mut ev = Evaluation::default();
+        // Axial points: strain and unit tangent from r' alone.
+        let mut eps_a = [0.0; AXIAL_POINTS];
+        let mut t_a = [[0.0; 2]; AXIAL_POINTS];
+        for (j, ap) in rule.axial.iter().enumerate() {
+            let dr = scatter::combine::<2>(&ap.row.ds, q);
+            let n = check_stretch((dr[0] * dr[0] + dr[1] * dr[1]).sqrt()).map_err(kin)?;
+            eps_a[j] = n - 1.0;
+            t_a[j] = [dr[0] / n, dr[1] / n];
+            ev.energy += ap.weight * 0.5 * ea * eps_a[j] * eps_a[j];
+        }
+        // Hourglass stabilization at the midpoint (see [`HOURGLASS`]): the force
+        // `c d (d eps_mid/dq - mean sum_j d eps_j/dq)`.
+        let c = HOURGLASS * ea * self.element_length;
+        let mean = 1.0 / AXIAL_POINTS as f64;
+        {
+            let dr = scatter::combine::<2>(&rule.mid.ds, q);
+            let n = check_stretch((dr[0] * dr[0] + dr[1] * dr[1]).sqrt()).map_err(kin)?;
+            let d = (n - 1.0) - mean * eps_a.iter().sum::<f64>();
+            let cd = c * d;
+            add_slope_gradient(&mut f, cd / n, &rule.mid.ds, &dr);
+            for (j, ap) in rule.axial.iter().enumerate() {
+                // Axial force N = EA eps along the tangent, minus the hourglass share.
+                let a = ap.weight * ea * eps_a[j] - cd * mean;
+                add_slope_gradient(&mut f, a, &ap.row.ds, &t_a[j]);
+            }
+            ev.energy += 0.5 * c * d * d;
+        }
+        let ws = if self.law.kind().has_state() {
+            self.wires
+        } else {
+            0
+        };
+        for (i, bp) in rule.bend.iter().enumerate() {
+            let eps: f64 = (0..AXIAL_POINTS).map(|j| bp.interp[j] * eps_a[j]).sum();
+            let a = scatter::combine::<2>(&bp.qp.row.ds, q);
+            let b = scatter::combine::<2>(&bp.qp.row.dds, q);
+            // kappa = (r' x r'')_z / |r'|^2 and its gradient (as `PlanarPoint::bending_first`).
+            let n = check_stretch((a[0] * a[0] + a[1] * a[1]).sqrt()).map_err(kin)?;
+            let g = 1.0 / (n * n);
+            let cr = a[0] * b[1] - a[1] * b[0];
+            let kappa = cr * g;
+            let ga = -2.0 * g / n;
+            let ka = [
+                b[1] * g + a[0] / n * ga * cr,
+                -b[0] * g + a[1] / n * ga * cr,
+            ];
+            let kb = [-a[1] * g, a[0] * g];
+            let (sl, tr) = if ws > 0 {
+                (
+                    &slip[i * ws..(i + 1) * ws],
+                    &mut trial[i * ws..(i + 1) * ws],
+                )
+            } else {
+                (&slip[..0], &mut trial[..0])
+            };
+            let r = self.law.planar(&bp.station, eps, kappa, sl, tr);
+            if !(r.moment.is_finite() && r.moment_curvature.is_finite()) {
+                return Err(BeamError::NonFinite {
+                    element: e,
+                    x: bp.station.x,
+                    quantity: "bending moment",
+                });
+            }
+            let w = bp.qp.weight;
+            let wm = w * r.moment;
+            let row = &bp.qp.row;
+            for k in 0..4 {
+                let (c1, c2) = (wm * row.ds[k], wm * row.dds[k]);
+                f[2 * k] += c1 * ka[0] + c2 * kb[0];
+                f[2 * k + 1] += c1 * ka[1] + c2 * kb[1];
+            }
+            ev.energy += w * (r.energy - 0.5 * ea * eps * eps);
+            ev.slip_work += w * r.slip_work;
+            ev.slipping += r.slipping;
+            if let Some(p) = points.as_deref_mut() {
+                p[i] = PointState {
+                    x: bp.station.x,
+                    eps,
+                    kappa,
+                    kappa_y: 0.0,
+                    moment: r.moment,
+                    energy_strain: r.energy_strain,
+                    weight: w,
+                    slipping: r.slipping,
+                };
+            }
+        }
+        if !f.iter().all(|v| v.is_finite()) {
+            return Err(BeamError::NonFinite {
+                element: e,
+                x: (e as f64 + 0.5) * self.element_length,
+                quantity: "elastic force",
+            });
+        }
+        Ok((PlanarVector::from(f), ev))
+    }
+}
+
+/// `f += a S_k' v` for the four nodal slope blocks: the element force of a local force `a v`
+/// acting on `r'` alone.
+#[inline(always)]
+fn add_slope_gradient(f: &mut [f64; 8], a: f64, ds: &[f64; 4], v: &[f64; 2]) {
+    for k in 0..4 {
+        let c = a * ds[k];
+        f[2 * k] += c * v[0];
+        f[2 * k + 1] += c * v[1];
     }
 }
 

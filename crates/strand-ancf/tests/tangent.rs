@@ -1,9 +1,11 @@
 //! The assembled tangent stiffness equals the finite-difference Jacobian of the assembled
-//! generalized elastic forces, for every law, away from stick/slip switch points; a rigid
-//! motion of the unstrained strand produces no force and no energy.
+//! generalized elastic forces, for every law, away from stick/slip switch points; the forces
+//! evaluated without the tangent (the lean path of the iterations that keep their matrix) are
+//! those evaluated with it; a rigid motion of the unstrained strand produces no force and no
+//! energy.
 
 use strand_ancf::band::BandMatrix;
-use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support};
+use strand_ancf::beam::{Beam, BeamSpec, ElementKind, PointState, Support};
 use strand_core::{LawKind, SectionLaw, Strand, StrandSpec};
 
 fn strand() -> Strand {
@@ -117,6 +119,74 @@ fn tangent_matches_finite_differences() {
                 worst < 1.0,
                 "{kind} k {k}: tangent differs from FD ({worst:e} of the allowed)"
             );
+        }
+    }
+}
+
+/// The force-only evaluation and the evaluation with the tangent are separate code paths; they
+/// must give the same forces, energies, slip state and point states up to rounding.
+#[test]
+fn forces_without_the_tangent_equal_those_with_it() {
+    for kind in [
+        LawKind::Constant,
+        LawKind::Continuous,
+        LawKind::Paper,
+        LawKind::Hysteretic,
+    ] {
+        let b = beam(kind, Some(Support::Pinned));
+        let n = b.coords();
+        for (k, eps) in [(0.5, 1e-3), (3.0, 2e-3), (8.0, -1e-3)] {
+            let mut q = arc(&b, k, eps);
+            for (i, v) in q.iter_mut().enumerate() {
+                *v += 1e-3 * ((i as f64) * 2.3).cos();
+            }
+            // A committed slip state that is not zero, so the hysteretic law's return mapping
+            // starts from somewhere.
+            let slip: Vec<f64> = (0..b.state_len())
+                .map(|i| 1e-5 * ((i as f64) * 0.7).sin())
+                .collect();
+            let (mut trial_a, mut trial_b) = (slip.clone(), slip.clone());
+            let (mut fa, mut fb) = (vec![0.0; n], vec![0.0; n]);
+            let (mut pa, mut pb) = (
+                vec![PointState::default(); b.points()],
+                vec![PointState::default(); b.points()],
+            );
+            let mut t = BandMatrix::zeros(b.dofs(), b.bandwidth(), b.bandwidth());
+            let ea = b
+                .internal(
+                    &q,
+                    &slip,
+                    &mut trial_a,
+                    &mut fa,
+                    Some(&mut t),
+                    Some(&mut pa),
+                )
+                .unwrap();
+            let eb = b
+                .internal(&q, &slip, &mut trial_b, &mut fb, None, Some(&mut pb))
+                .unwrap();
+            let scale = fa.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            for i in 0..n {
+                assert!(
+                    (fa[i] - fb[i]).abs() <= 1e-12 * scale,
+                    "{kind} k {k}: force {i}: {} with the tangent, {} without",
+                    fa[i],
+                    fb[i]
+                );
+            }
+            let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(b.abs()).max(1e-300);
+            assert!(close(ea.energy, eb.energy), "{kind} k {k}: energy");
+            assert!(close(ea.slip_work, eb.slip_work), "{kind} k {k}: slip work");
+            assert_eq!(ea.slipping, eb.slipping, "{kind} k {k}: slipping wires");
+            assert!(ea.slipping > 0 || kind == LawKind::Constant || k < 1.0);
+            for (x, y) in trial_a.iter().zip(&trial_b) {
+                assert!(close(*x, *y), "{kind} k {k}: trial slip {x} and {y}");
+            }
+            for (x, y) in pa.iter().zip(&pb) {
+                assert!(close(x.kappa, y.kappa) && close(x.moment, y.moment));
+                assert!(close(x.eps, y.eps) && close(x.energy_strain, y.energy_strain));
+                assert_eq!((x.x, x.weight, x.slipping), (y.x, y.weight, y.slipping));
+            }
         }
     }
 }

@@ -57,7 +57,7 @@ pub struct RunSummary {
     pub tip: [f64; 3],
     /// Time step (s, dynamics).
     pub time_step: Option<f64>,
-    /// Estimated stable step of the explicit integrator (s, dynamics).
+    /// Estimated stable step of the explicit integrator (s, runs of the explicit integrator).
     pub stable_time_step: Option<f64>,
     /// Largest |kinetic + gravity + elastic + dissipated - initial| (J, dynamics).
     pub energy_balance_error: Option<f64>,
@@ -488,7 +488,7 @@ fn run_dynamics(
     summary.steps = s.steps;
     summary.newton_iterations = s.newton_iterations;
     summary.time_step = Some(s.time_step);
-    summary.stable_time_step = Some(s.stable_step);
+    summary.stable_time_step = s.stable_step;
     summary.energy_balance_error = Some(s.balance_error);
     summary.energy_balance_relative = Some(s.balance_error / s.max_kinetic.max(f64::MIN_POSITIVE));
     summary.dissipated = Some(s.last.dissipated);

@@ -115,14 +115,15 @@ fn dynamic_rows(ctx: &Ctx, s: &DynamicSummary, h: &History) -> anyhow::Result<Ve
         ctx.check("energy-balance-relative", rel, "")?
             .with_note(format!(
                 "largest |E_kin + E_grav + E_el + W_diss - E_0| = {:.3e} J against the largest \
-             kinetic energy {:.3e} J; dissipated {:.3e} J; {} steps of {:.3e} s (estimated \
-             stable step {:.3e} s)",
+             kinetic energy {:.3e} J; dissipated {:.3e} J; {} steps of {:.3e} s{}",
                 s.balance_error,
                 s.max_kinetic,
                 s.last.dissipated,
                 s.steps,
                 s.time_step,
-                s.stable_step
+                s.stable_step.map_or(String::new(), |h| format!(
+                    " (estimated stable step {h:.3e} s)"
+                ))
             )),
         ctx.check("finite", f64::from(u8::from(h.finite)), "")?,
     ])
