@@ -459,6 +459,14 @@ impl Beam {
             if let Some(t) = tangent.as_deref_mut() {
                 // Element matrices are column-major, 2 nd x 2 nd.
                 let m = 2 * nd;
+                if let (Some(i0), Some(i1)) =
+                    (self.free_index[e * nd], self.free_index[e * nd + m - 1])
+                    && i1 == i0 + m - 1
+                {
+                    // Every coordinate of the element is free: one dense block.
+                    t.add_block(i0, m, ke, sym);
+                    continue;
+                }
                 if sym {
                     // Mirror the lower triangle: the global matrix is then exactly symmetric
                     // (each mirrored pair sums the same values in the same order), which lets
@@ -744,6 +752,7 @@ impl Beam {
         } else {
             0
         };
+        let linear = self.law.is_linear();
         for (i, bp) in rule.bend.iter().enumerate() {
             let eps: f64 = (0..AXIAL_POINTS).map(|j| bp.interp[j] * eps_a[j]).sum();
             let a = scatter::combine::<2>(&bp.qp.row.ds, q);
@@ -767,7 +776,11 @@ impl Beam {
             } else {
                 (&slip[..0], &mut trial[..0])
             };
-            let r = self.law.planar(&bp.station, eps, kappa, sl, tr);
+            let r = if linear {
+                self.law.planar_linear(eps, kappa)
+            } else {
+                self.law.planar(&bp.station, eps, kappa, sl, tr)
+            };
             if !(r.moment.is_finite() && r.moment_curvature.is_finite()) {
                 return Err(BeamError::NonFinite {
                     element: e,

@@ -322,6 +322,32 @@ impl SectionLaw {
         }
     }
 
+    /// Whether the law is linear: no wire layer, so [`Self::planar_linear`] is the whole of
+    /// [`Self::planar`] (the `constant` law, plain wires).
+    #[inline]
+    pub fn is_linear(&self) -> bool {
+        self.layer.is_none()
+    }
+
+    /// The part of [`Self::planar`] without the wires, `N = EA eps` and `M = K kappa` with the
+    /// base bending stiffness: all of it for a linear law ([`Self::is_linear`]), which element
+    /// loops can then evaluate inline.
+    #[inline(always)]
+    pub fn planar_linear(&self, eps: f64, kappa: f64) -> PlanarResponse {
+        PlanarResponse {
+            axial_force: self.axial_stiffness * eps,
+            axial_stiffness: self.axial_stiffness,
+            moment: self.base_bending * kappa,
+            moment_curvature: self.base_bending,
+            moment_strain: 0.0,
+            energy: 0.5 * self.axial_stiffness * eps * eps
+                + 0.5 * self.base_bending * kappa * kappa,
+            energy_strain: 0.0,
+            slip_work: 0.0,
+            slipping: 0,
+        }
+    }
+
     /// Evaluates the law for a signed planar curvature `kappa` (1/m, `kappa_z`) at strain
     /// `eps`. `slip` is the station's committed slip state and `trial` receives the trial state
     /// (both of length [`Self::state_len`]; empty slices for laws without state).
@@ -334,18 +360,7 @@ impl SectionLaw {
         slip: &[f64],
         trial: &mut [f64],
     ) -> PlanarResponse {
-        let mut r = PlanarResponse {
-            axial_force: self.axial_stiffness * eps,
-            axial_stiffness: self.axial_stiffness,
-            moment: self.base_bending * kappa,
-            moment_curvature: self.base_bending,
-            moment_strain: 0.0,
-            energy: 0.5 * self.axial_stiffness * eps * eps
-                + 0.5 * self.base_bending * kappa * kappa,
-            energy_strain: 0.0,
-            slip_work: 0.0,
-            slipping: 0,
-        };
+        let mut r = self.planar_linear(eps, kappa);
         let Some(law) = self.layer else { return r };
         let (scale, dscale) = self.cap_scale(eps);
         match self.kind {
