@@ -121,7 +121,7 @@ impl BandMatrix {
         for i in first..=last {
             let row: &[f64; N] = self.data[i * w..i * w + N].try_into().expect("N entries");
             let xs: &[f64; N] = x[i - kl..i - kl + N].try_into().expect("N entries");
-            y[i] = dot_fixed(row, xs);
+            y[i] = dot(row, xs);
         }
         self.mul_vec_rows(last + 1, n, x, y);
     }
@@ -265,21 +265,6 @@ impl BandMatrix {
         }
         true
     }
-}
-
-/// [`dot`] for arrays of a fixed length: the same partial sums in the same order, unrolled.
-#[inline(always)]
-fn dot_fixed<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
-    let full = N / 4 * 4;
-    let mut s = [0.0; 4];
-    for i in 0..full {
-        s[i % 4] += a[i] * b[i];
-    }
-    let mut t = (s[0] + s[2]) + (s[1] + s[3]);
-    for i in full..N {
-        t += a[i] * b[i];
-    }
-    t
 }
 
 /// `sum_i a_i b_i` with four partial sums (the rows are short: the latency of one chained
@@ -426,60 +411,48 @@ impl Ldlt {
         }
     }
 
-    /// [`Self::solve`] with the rows of `L` and `L^T` of `B = b` entries as fixed-size arrays
-    /// where the band is full (`B = 0`: no fixed size). Each unknown is finished in one pass
-    /// over its row, subtracting the terms one by one in the order of the column-oriented
-    /// substitution (columns left to right going down, right to left going up): the same
-    /// rounding, which the very thin strands' statics (EA L^2 / EI = 1e7, `tests/statics.rs`)
-    /// are sensitive to, with one store per unknown.
+    /// [`Self::solve`] with the full columns of `B = b` entries as fixed-size arrays
+    /// (`B = 0`: no fixed size).
     #[inline(always)]
     fn solve_fixed<const B: usize>(&self, x: &mut [f64]) {
         let (n, b, bw) = (self.n, self.b, self.b + 1);
-        // L y = rhs, row by row: y_i = rhs_i - sum_{j < i} l_ij y_j, j increasing.
-        for i in 0..n {
-            let mut s = x[i];
-            if B > 0 && i >= B {
-                let l: &[f64; B] = self.lower[i * bw..i * bw + B]
-                    .try_into()
-                    .expect("B entries");
-                let xs: &[f64; B] = x[i - B..i].try_into().expect("B entries");
+        // L y = rhs, column by column (rows of L^T).
+        for k in 0..n {
+            let xk = x[k];
+            let hi = (k + b).min(n - 1);
+            if B > 0 && hi == k + B {
+                let xs: &mut [f64; B] = (&mut x[k + 1..=hi]).try_into().expect("B entries");
+                let u: &[f64; B] = self.upper[k * b..k * b + B].try_into().expect("B entries");
                 for t in 0..B {
-                    s -= l[t] * xs[t];
+                    xs[t] -= u[t] * xk;
                 }
             } else {
-                let lo = i.saturating_sub(b);
-                for (l, xj) in self.lower[i * bw + lo + b - i..i * bw + b]
-                    .iter()
-                    .zip(&x[lo..i])
-                {
-                    s -= l * xj;
+                for (xi, u) in x[k + 1..=hi].iter_mut().zip(&self.upper[k * b..]) {
+                    *xi -= u * xk;
                 }
             }
-            x[i] = s;
         }
         for (xi, d) in x.iter_mut().zip(&self.inv_diag) {
             *xi *= d;
         }
-        // L^T x = y, from the bottom: x_i = y_i - sum_{j > i} l_ji x_j, j decreasing.
+        // L^T x = y, row by row of L from the bottom.
         for i in (0..n).rev() {
-            let mut s = x[i];
-            let hi = (i + b).min(n - 1);
-            if B > 0 && hi == i + B {
-                let u: &[f64; B] = self.upper[i * b..i * b + B].try_into().expect("B entries");
-                let xs: &[f64; B] = x[i + 1..=i + B].try_into().expect("B entries");
-                for t in (0..B).rev() {
-                    s -= u[t] * xs[t];
+            let xi = x[i];
+            if B > 0 && i >= B {
+                let xs: &mut [f64; B] = (&mut x[i - B..i]).try_into().expect("B entries");
+                let l: &[f64; B] = self.lower[i * bw..i * bw + B]
+                    .try_into()
+                    .expect("B entries");
+                for t in 0..B {
+                    xs[t] -= l[t] * xi;
                 }
             } else {
-                for (u, xj) in self.upper[i * b..i * b + (hi - i)]
-                    .iter()
-                    .zip(&x[i + 1..=hi])
-                    .rev()
-                {
-                    s -= u * xj;
+                let lo = i.saturating_sub(b);
+                let row = &self.lower[i * bw + lo + b - i..i * bw + b];
+                for (xk, l) in x[lo..i].iter_mut().zip(row) {
+                    *xk -= l * xi;
                 }
             }
-            x[i] = s;
         }
     }
 }
