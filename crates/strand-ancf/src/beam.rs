@@ -753,21 +753,21 @@ impl Beam {
             0
         };
         let linear = self.law.is_linear();
+        // The kinematics of the bending points, LANES at a time: the square roots and
+        // divisions of independent points side by side (packed, with the same rounding as
+        // one by one), not each waiting on the last.
+        let mut kin_pts = [BendKinematics::default(); LANES];
         for (i, bp) in rule.bend.iter().enumerate() {
+            let lane = i % LANES;
+            if lane == 0 {
+                let chunk = &rule.bend[i..(i + LANES).min(rule.bend.len())];
+                bend_kinematics(chunk, q, &mut kin_pts);
+                for k in &kin_pts[..chunk.len()] {
+                    check_stretch(k.n).map_err(kin)?;
+                }
+            }
+            let BendKinematics { kappa, ka, kb, .. } = kin_pts[lane];
             let eps: f64 = (0..AXIAL_POINTS).map(|j| bp.interp[j] * eps_a[j]).sum();
-            let a = scatter::combine::<2>(&bp.qp.row.ds, q);
-            let b = scatter::combine::<2>(&bp.qp.row.dds, q);
-            // kappa = (r' x r'')_z / |r'|^2 and its gradient (as `PlanarPoint::bending_first`).
-            let n = check_stretch((a[0] * a[0] + a[1] * a[1]).sqrt()).map_err(kin)?;
-            let g = 1.0 / (n * n);
-            let cr = a[0] * b[1] - a[1] * b[0];
-            let kappa = cr * g;
-            let ga = -2.0 * g / n;
-            let ka = [
-                b[1] * g + a[0] / n * ga * cr,
-                -b[0] * g + a[1] / n * ga * cr,
-            ];
-            let kb = [-a[1] * g, a[0] * g];
             let (sl, tr) = if ws > 0 {
                 (
                     &slip[i * ws..(i + 1) * ws],
@@ -820,6 +820,58 @@ impl Beam {
             });
         }
         Ok((PlanarVector::from(f), ev))
+    }
+}
+
+/// Bending points evaluated side by side in [`Beam::planar_forces`].
+const LANES: usize = 4;
+
+/// Curvature and its gradient at a bending point (as `PlanarPoint::bending_first`).
+#[derive(Debug, Clone, Copy, Default)]
+struct BendKinematics {
+    /// `|r'|`.
+    n: f64,
+    /// `(r' x r'')_z / |r'|^2` (1/m).
+    kappa: f64,
+    /// `d kappa / d r'`.
+    ka: [f64; 2],
+    /// `d kappa / d r''`.
+    kb: [f64; 2],
+}
+
+/// [`BendKinematics`] of up to [`LANES`] bending points with element coordinates `q`, each
+/// step over all points at once; lanes past `points` are left with `n = 1`.
+#[inline(always)]
+fn bend_kinematics(points: &[BendPoint], q: &[f64], out: &mut [BendKinematics; LANES]) {
+    let (mut a, mut b) = ([[0.0; 2]; LANES], [[0.0; 2]; LANES]);
+    let mut n = [1.0; LANES];
+    for (l, bp) in points.iter().enumerate() {
+        a[l] = scatter::combine::<2>(&bp.qp.row.ds, q);
+        b[l] = scatter::combine::<2>(&bp.qp.row.dds, q);
+        n[l] = a[l][0] * a[l][0] + a[l][1] * a[l][1];
+    }
+    for x in &mut n {
+        *x = x.sqrt();
+    }
+    let mut g = [0.0; LANES];
+    let mut ga = [0.0; LANES];
+    let mut t = [[0.0; 2]; LANES];
+    for l in 0..LANES {
+        g[l] = 1.0 / (n[l] * n[l]);
+        ga[l] = -2.0 * g[l] / n[l];
+        t[l] = [a[l][0] / n[l], a[l][1] / n[l]];
+    }
+    for l in 0..LANES {
+        let cr = a[l][0] * b[l][1] - a[l][1] * b[l][0];
+        out[l] = BendKinematics {
+            n: n[l],
+            kappa: cr * g[l],
+            ka: [
+                b[l][1] * g[l] + t[l][0] * ga[l] * cr,
+                -b[l][0] * g[l] + t[l][1] * ga[l] * cr,
+            ],
+            kb: [-a[l][1] * g[l], a[l][0] * g[l]],
+        };
     }
 }
 
