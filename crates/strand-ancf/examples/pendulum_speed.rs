@@ -9,7 +9,8 @@
 //!
 //! LAW is `constant`, `continuous` or `hysteretic` (default: constant and hysteretic). Only
 //! the solve is timed (`run_dynamic`, after the beam is built); each configuration runs
-//! `REPEAT` times and the fastest is reported.
+//! `REPEAT` times and the fastest is reported, with the median (timings on a shared machine vary
+//! by up to a factor of two from minute to minute: compare builds in interleaved runs).
 
 use std::time::Instant;
 
@@ -53,8 +54,8 @@ fn timed(
     scheme: Scheme,
     repeat: usize,
     reference: Option<&[[f64; 2]]>,
-) -> (DynamicSummary, f64, f64, Vec<[f64; 2]>) {
-    let mut best = f64::INFINITY;
+) -> (DynamicSummary, Timing, f64, Vec<[f64; 2]>) {
+    let mut times = Vec::with_capacity(repeat);
     let mut out = None;
     for _ in 0..repeat {
         let mut opts = DynamicOptions::new(DURATION, scheme, 0.01);
@@ -76,10 +77,7 @@ fn timed(
             });
         })
         .unwrap();
-        let dt = start.elapsed().as_secs_f64();
-        if dt < best {
-            best = dt;
-        }
+        times.push(start.elapsed().as_secs_f64());
         out = Some((s, tips));
     }
     let (s, tips) = out.unwrap();
@@ -94,20 +92,37 @@ fn timed(
                 (a[0] - b[0]).hypot(a[1] - b[1])
             })
     });
-    (s, best, err, tips)
+    times.sort_by(f64::total_cmp);
+    let n = times.len();
+    let timing = Timing {
+        fastest: times[0],
+        median: 0.5 * (times[(n - 1) / 2] + times[n / 2]),
+        runs: n,
+    };
+    (s, timing, err, tips)
 }
 
-fn report(name: &str, s: &DynamicSummary, secs: f64, err: f64) {
+/// Solve times of repeated runs (s): on a shared machine the fastest is the most repeatable,
+/// the median shows the spread.
+struct Timing {
+    fastest: f64,
+    median: f64,
+    runs: usize,
+}
+
+fn report(name: &str, s: &DynamicSummary, t: &Timing, err: f64) {
     println!(
         "{name:<34} {:>9.2} ms {:>6} steps {:>7} iter {:>6} fact  RTF {:>7.1}  tip err {:.2e} m  \
-         balance {:.1e} J",
-        1e3 * secs,
+         balance {:.1e} J  median {:.2} ms of {}",
+        1e3 * t.fastest,
         s.steps,
         s.newton_iterations,
         s.factorizations,
-        DURATION / secs,
+        DURATION / t.fastest,
         err,
-        s.balance_error
+        s.balance_error,
+        1e3 * t.median,
+        t.runs
     );
 }
 
@@ -148,7 +163,7 @@ fn main() {
             let repeat = std::env::var("PENDULUM_REPEAT")
                 .map_or(1, |v| v.parse().expect("PENDULUM_REPEAT is a count"));
             let (s, t, e, tips) = timed(&b, alpha(step, RHO), repeat, None);
-            report(&format!("gen-alpha {step:.1e} s rho {RHO}"), &s, t, e);
+            report(&format!("gen-alpha {step:.1e} s rho {RHO}"), &s, &t, e);
             if let Ok(path) = std::env::var("PENDULUM_TIPS") {
                 let mut out = String::new();
                 for p in &tips {
@@ -164,14 +179,14 @@ fn main() {
         // The reference always uses the default quadrature.
         let reference_beam = beam(kind, None);
         let (rs, rt, _, reference) = timed(&reference_beam, alpha(1e-4, 1.0), 1, None);
-        report("gen-alpha 1e-4 s rho 1 (reference)", &rs, rt, 0.0);
+        report("gen-alpha 1e-4 s rho 1 (reference)", &rs, &rt, 0.0);
         let r = Some(reference.as_slice());
         let (s, t, e, _) = timed(&b, Scheme::Verlet { step: None }, 1, r);
-        report(&format!("verlet {:.2e} s", s.time_step), &s, t, e);
+        report(&format!("verlet {:.2e} s", s.time_step), &s, &t, e);
         // Steps that divide the 10 ms output interval, so that frames fall on the same times.
         for step in [1e-3, 2e-3, 2.5e-3, 5e-3, 1e-2] {
             let (s, t, e, _) = timed(&b, alpha(step, RHO), REPEAT, r);
-            report(&format!("gen-alpha {step:.1e} s rho {RHO}"), &s, t, e);
+            report(&format!("gen-alpha {step:.1e} s rho {RHO}"), &s, &t, e);
         }
     }
 }
