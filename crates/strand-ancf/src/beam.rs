@@ -158,6 +158,9 @@ pub struct Beam {
     /// Free-coordinate index of each global coordinate.
     free_index: Vec<Option<usize>>,
     n_free: usize,
+    /// The global coordinates of the free ones when they are contiguous (no pinned end at
+    /// x = L, whose fixed position sits between free coordinates).
+    free_span: Option<std::ops::Range<usize>>,
     rules: Vec<ElementRule>,
     q_ref: Vec<f64>,
     gravity_force: Vec<f64>,
@@ -280,6 +283,7 @@ impl Beam {
             law,
             length,
             element_length: l,
+            free_span: free_span(&free_index, n_free),
             free_index,
             n_free,
             rules,
@@ -315,6 +319,11 @@ impl Beam {
     /// Number of free coordinates (degrees of freedom).
     pub fn dofs(&self) -> usize {
         self.n_free
+    }
+    /// The global coordinates of the free ones, `g0..g0 + dofs()`, when they are contiguous:
+    /// free index `i` is then global coordinate `g0 + i`.
+    pub fn free_span(&self) -> Option<std::ops::Range<usize>> {
+        self.free_span.clone()
     }
     /// Free index of global coordinate `g`, if free.
     pub fn free_index(&self, g: usize) -> Option<usize> {
@@ -1051,6 +1060,17 @@ impl Beam {
         }
         Ok((f, ev, symmetric))
     }
+}
+
+/// `g0..g0 + n_free` if the free coordinates are exactly those (see [`Beam::free_span`]).
+fn free_span(free_index: &[Option<usize>], n_free: usize) -> Option<std::ops::Range<usize>> {
+    let g0 = free_index.iter().position(|f| f.is_some())?;
+    let span = g0..g0 + n_free;
+    free_index
+        .iter()
+        .enumerate()
+        .all(|(g, f)| *f == span.contains(&g).then(|| g - g0))
+        .then_some(span)
 }
 
 /// Consistent mass matrix of one element of `kind` (eq. (44)).

@@ -350,9 +350,15 @@ fn verlet(
     let fail = |t: f64, step: usize| move |source| DynamicError::Beam { t, step, source };
     // Acceleration a = M^-1 (Q_g - Q_e) of the free coordinates.
     let accel = |force: &[f64], af: &mut [f64]| {
-        for (g, f) in force.iter().enumerate() {
-            if let Some(i) = beam.free_index(g) {
-                af[i] = g_free[i] - f;
+        if let Some(span) = beam.free_span() {
+            for ((a, g), f) in af.iter_mut().zip(&g_free).zip(&force[span]) {
+                *a = g - f;
+            }
+        } else {
+            for (g, f) in force.iter().enumerate() {
+                if let Some(i) = beam.free_index(g) {
+                    af[i] = g_free[i] - f;
+                }
             }
         }
         mass.solve(af);
@@ -541,11 +547,7 @@ fn alpha_step(
             break;
         };
         beam.mass().mul_vec(&st.acc, &mut w.mv);
-        for (g, f) in w.force.iter().enumerate() {
-            if let Some(i) = beam.free_index(g) {
-                w.r[i] = w.mv[i] + f - w.g_free[i];
-            }
-        }
+        residual(beam, &w.mv, &w.force, &w.g_free, &mut w.r);
         if fresh {
             w.k.add_scaled(beta_p, beam.mass());
             w.factorizations += 1;
@@ -636,6 +638,22 @@ fn alpha_step(
             })
         }
         None => Err(iterations),
+    }
+}
+
+/// Newton residual of the free coordinates, `r = M q'' + Q_e - Q_g`, from `mv = M q''`,
+/// the elastic forces of all coordinates and the free gravity forces.
+fn residual(beam: &Beam, mv: &[f64], force: &[f64], g_free: &[f64], r: &mut [f64]) {
+    if let Some(span) = beam.free_span() {
+        for (((ri, m), f), g) in r.iter_mut().zip(mv).zip(&force[span]).zip(g_free) {
+            *ri = m + f - g;
+        }
+        return;
+    }
+    for (g, f) in force.iter().enumerate() {
+        if let Some(i) = beam.free_index(g) {
+            r[i] = mv[i] + f - g_free[i];
+        }
     }
 }
 

@@ -88,6 +88,10 @@ pub enum StaticError {
 
 /// Free part of `v` into `out`.
 pub(crate) fn gather_free(beam: &Beam, v: &[f64], out: &mut [f64]) {
+    if let Some(span) = beam.free_span() {
+        out.copy_from_slice(&v[span]);
+        return;
+    }
     for (g, x) in v.iter().enumerate() {
         if let Some(i) = beam.free_index(g) {
             out[i] = *x;
@@ -97,6 +101,12 @@ pub(crate) fn gather_free(beam: &Beam, v: &[f64], out: &mut [f64]) {
 
 /// `q[g] += s * dq[free(g)]` for the free coordinates.
 pub(crate) fn add_free(beam: &Beam, q: &mut [f64], s: f64, dq: &[f64]) {
+    if let Some(span) = beam.free_span() {
+        for (x, d) in q[span].iter_mut().zip(dq) {
+            *x += s * d;
+        }
+        return;
+    }
     for (g, x) in q.iter_mut().enumerate() {
         if let Some(i) = beam.free_index(g) {
             *x += s * dq[i];

@@ -219,3 +219,45 @@ fn rigid_motion_gives_no_force_or_energy() {
         assert!(e.energy.abs() < 1e-15, "{kind}: energy {}", e.energy);
     }
 }
+
+/// The contiguous span of free coordinates, where there is one, maps free index `i` to global
+/// coordinate `g0 + i`; a pinned end at x = L leaves its slope free after its fixed position,
+/// so there is none.
+#[test]
+fn free_span_matches_the_free_indices() {
+    let s = strand();
+    for (start, end, contiguous) in [
+        (Some(Support::Pinned), None, true),
+        (Some(Support::Clamped), Some(Support::Clamped), true),
+        (None, None, true),
+        (Some(Support::Clamped), Some(Support::Pinned), false),
+    ] {
+        let b = Beam::new(
+            BeamSpec {
+                elements: 3,
+                bending_points: None,
+                mass_per_length: s.mass_per_length(),
+                element: ElementKind::Planar,
+                direction: [1.0, 0.0, 0.0],
+                gravity: [0.0, -9.81, 0.0],
+                start,
+                end,
+            },
+            SectionLaw::new(&s, LawKind::Constant),
+        )
+        .unwrap();
+        let span = b.free_span();
+        assert_eq!(span.is_some(), contiguous, "{start:?} {end:?}");
+        if let Some(span) = span {
+            assert_eq!(span.len(), b.dofs());
+            for g in 0..b.coords() {
+                let expected = span.contains(&g).then(|| g - span.start);
+                assert_eq!(
+                    b.free_index(g),
+                    expected,
+                    "{start:?} {end:?}: coordinate {g}"
+                );
+            }
+        }
+    }
+}
