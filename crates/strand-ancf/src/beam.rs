@@ -18,7 +18,7 @@
 //!   pitch). Laws without wires use 4 Gauss points. A scene can ask for n Gauss points instead.
 
 use nalgebra::{DMatrix, Vector2, Vector3, Vector4};
-use strand_core::{SectionLaw, Station};
+use strand_core::{PlanarResponse, SectionLaw, Station};
 
 use crate::band::BandMatrix;
 use crate::error::{AncfError, check_stretch};
@@ -365,13 +365,17 @@ impl Beam {
     pub fn points(&self) -> usize {
         self.rules.iter().map(|r| r.bend.len()).sum()
     }
-    /// Length of the law's state vector for the whole beam.
-    pub fn state_len(&self) -> usize {
+    /// Slip state values per bending point: one per wire for a law with state, else none.
+    fn state_per_point(&self) -> usize {
         if self.law.kind().has_state() {
-            self.points() * self.wires
+            self.wires
         } else {
             0
         }
+    }
+    /// Length of the law's state vector for the whole beam.
+    pub fn state_len(&self) -> usize {
+        self.points() * self.state_per_point()
     }
 
     fn planar_coords(&self, q: &[f64], e: usize) -> PlanarCoords {
@@ -420,11 +424,7 @@ impl Beam {
             t.fill_zero();
         }
         let nd = self.nd;
-        let ws = if self.law.kind().has_state() {
-            self.wires
-        } else {
-            0
-        };
+        let ws = self.state_per_point();
         let mut sum = Evaluation::default();
         let mut kp = PlanarMatrix::zeros();
         let mut ks = SpatialMatrix::zeros();
@@ -511,16 +511,24 @@ impl Beam {
         Ok(sum)
     }
 
+    /// `Ok` if the element force `f` of element `e` is finite.
+    fn check_force(&self, e: usize, f: &[f64]) -> Result<(), BeamError> {
+        if f.iter().all(|v| v.is_finite()) {
+            return Ok(());
+        }
+        Err(BeamError::NonFinite {
+            element: e,
+            x: (e as f64 + 0.5) * self.element_length,
+            quantity: "elastic force",
+        })
+    }
+
     /// Tangent of element `e` alone at coordinates `q`, from a state without slip (for the
     /// stable-step bound).
     #[cfg(test)]
     pub(crate) fn element_tangent(&self, e: usize, q: &[f64]) -> Result<DMatrix<f64>, BeamError> {
         let rule = &self.rules[e];
-        let ws = if self.law.kind().has_state() {
-            self.wires
-        } else {
-            0
-        };
+        let ws = self.state_per_point();
         let slip = vec![0.0; rule.bend.len() * ws];
         let mut trial = slip.clone();
         Ok(match self.spec.element {
@@ -610,22 +618,15 @@ impl Beam {
             ev.energy += 0.5 * c * d * d;
         }
         // Bending points.
-        let ws = if self.law.kind().has_state() {
-            self.wires
-        } else {
-            0
-        };
+        let ws = self.state_per_point();
         for (i, bp) in rule.bend.iter().enumerate() {
             let eps: f64 = (0..AXIAL_POINTS).map(|j| bp.interp[j] * eps_a[j]).sum();
             let pt = PlanarPoint::at(qe, &bp.qp.row);
-            let (sl, tr) = if ws > 0 {
-                (
-                    &slip[i * ws..(i + 1) * ws],
-                    &mut trial[i * ws..(i + 1) * ws],
-                )
-            } else {
-                (&slip[..0], &mut trial[..0])
-            };
+            // Empty for a law without state (ws = 0).
+            let (sl, tr) = (
+                &slip[i * ws..(i + 1) * ws],
+                &mut trial[i * ws..(i + 1) * ws],
+            );
             let w = bp.qp.weight;
             let kappa;
             let r;
@@ -666,28 +667,8 @@ impl Beam {
                 r = self.law.planar(&bp.station, eps, kappa, sl, tr);
                 planar::add_gradient(&mut f, w, &bp.qp.row, &(grad * r.moment));
             }
-            if !(r.moment.is_finite() && r.moment_curvature.is_finite()) {
-                return Err(BeamError::NonFinite {
-                    element: e,
-                    x: bp.station.x,
-                    quantity: "bending moment",
-                });
-            }
-            ev.energy += w * (r.energy - 0.5 * ea * eps * eps);
-            ev.slip_work += w * r.slip_work;
-            ev.slipping += r.slipping;
-            if let Some(p) = points.as_deref_mut() {
-                p[i] = PointState {
-                    x: bp.station.x,
-                    eps,
-                    kappa,
-                    kappa_y: 0.0,
-                    moment: r.moment,
-                    energy_strain: r.energy_strain,
-                    weight: w,
-                    slipping: r.slipping,
-                };
-            }
+            let point = points.as_deref_mut().map(|p| &mut p[i]);
+            book_planar_point(e, bp, eps, kappa, ea, &r, &mut ev, point)?;
         }
         if let Some(t) = tangent {
             planar::mirror_lower(t);
@@ -697,13 +678,7 @@ impl Beam {
                 }
             }
         }
-        if !f.iter().all(|v| v.is_finite()) {
-            return Err(BeamError::NonFinite {
-                element: e,
-                x: (e as f64 + 0.5) * self.element_length,
-                quantity: "elastic force",
-            });
-        }
+        self.check_force(e, f.as_slice())?;
         Ok((f, ev, !coupled))
     }
 }
@@ -756,11 +731,7 @@ impl Beam {
             }
             ev.energy += 0.5 * c * d * d;
         }
-        let ws = if self.law.kind().has_state() {
-            self.wires
-        } else {
-            0
-        };
+        let ws = self.state_per_point();
         let linear = self.law.is_linear();
         // The kinematics of the bending points, LANES at a time: the square roots and
         // divisions of independent points side by side (packed, with the same rounding as
@@ -777,59 +748,70 @@ impl Beam {
             }
             let BendKinematics { kappa, ka, kb, .. } = kin_pts[lane];
             let eps: f64 = (0..AXIAL_POINTS).map(|j| bp.interp[j] * eps_a[j]).sum();
-            let (sl, tr) = if ws > 0 {
-                (
-                    &slip[i * ws..(i + 1) * ws],
-                    &mut trial[i * ws..(i + 1) * ws],
-                )
-            } else {
-                (&slip[..0], &mut trial[..0])
-            };
+            // Empty for a law without state (ws = 0).
+            let (sl, tr) = (
+                &slip[i * ws..(i + 1) * ws],
+                &mut trial[i * ws..(i + 1) * ws],
+            );
             let r = if linear {
                 self.law.planar_linear(eps, kappa)
             } else {
                 self.law.planar(&bp.station, eps, kappa, sl, tr)
             };
-            if !(r.moment.is_finite() && r.moment_curvature.is_finite()) {
-                return Err(BeamError::NonFinite {
-                    element: e,
-                    x: bp.station.x,
-                    quantity: "bending moment",
-                });
-            }
-            let w = bp.qp.weight;
-            let wm = w * r.moment;
+            let point = points.as_deref_mut().map(|p| &mut p[i]);
+            book_planar_point(e, bp, eps, kappa, ea, &r, &mut ev, point)?;
+            let wm = bp.qp.weight * r.moment;
             let row = &bp.qp.row;
             for k in 0..4 {
                 let (c1, c2) = (wm * row.ds[k], wm * row.dds[k]);
                 f[2 * k] += c1 * ka[0] + c2 * kb[0];
                 f[2 * k + 1] += c1 * ka[1] + c2 * kb[1];
             }
-            ev.energy += w * (r.energy - 0.5 * ea * eps * eps);
-            ev.slip_work += w * r.slip_work;
-            ev.slipping += r.slipping;
-            if let Some(p) = points.as_deref_mut() {
-                p[i] = PointState {
-                    x: bp.station.x,
-                    eps,
-                    kappa,
-                    kappa_y: 0.0,
-                    moment: r.moment,
-                    energy_strain: r.energy_strain,
-                    weight: w,
-                    slipping: r.slipping,
-                };
-            }
         }
-        if !f.iter().all(|v| v.is_finite()) {
-            return Err(BeamError::NonFinite {
-                element: e,
-                x: (e as f64 + 0.5) * self.element_length,
-                quantity: "elastic force",
-            });
-        }
+        self.check_force(e, f.as_slice())?;
         Ok((PlanarVector::from(f), ev))
     }
+}
+
+/// Books the section response `r` of planar bending point `bp` (element `e`): checks that
+/// it is finite, adds its stored energy beyond the axial part, slip work and slipping wires to
+/// `ev`, and records its state in `point`, if given. Shared by both planar element paths.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn book_planar_point(
+    e: usize,
+    bp: &BendPoint,
+    eps: f64,
+    kappa: f64,
+    ea: f64,
+    r: &PlanarResponse,
+    ev: &mut Evaluation,
+    point: Option<&mut PointState>,
+) -> Result<(), BeamError> {
+    if !(r.moment.is_finite() && r.moment_curvature.is_finite()) {
+        return Err(BeamError::NonFinite {
+            element: e,
+            x: bp.station.x,
+            quantity: "bending moment",
+        });
+    }
+    let w = bp.qp.weight;
+    ev.energy += w * (r.energy - 0.5 * ea * eps * eps);
+    ev.slip_work += w * r.slip_work;
+    ev.slipping += r.slipping;
+    if let Some(p) = point {
+        *p = PointState {
+            x: bp.station.x,
+            eps,
+            kappa,
+            kappa_y: 0.0,
+            moment: r.moment,
+            energy_strain: r.energy_strain,
+            weight: w,
+            slipping: r.slipping,
+        };
+    }
+    Ok(())
 }
 
 /// Bending points evaluated side by side in [`Beam::planar_forces`].
@@ -977,22 +959,15 @@ impl Beam {
                 ev.energy += 0.5 * c * d * d;
             }
         }
-        let ws = if self.law.kind().has_state() {
-            self.wires
-        } else {
-            0
-        };
+        let ws = self.state_per_point();
         for (i, bp) in rule.bend.iter().enumerate() {
             let eps: f64 = (0..AXIAL_POINTS).map(|j| bp.interp[j] * eps_a[j]).sum();
             let pt = SpatialPoint::at(qe, &bp.qp.row);
-            let (sl, tr) = if ws > 0 {
-                (
-                    &slip[i * ws..(i + 1) * ws],
-                    &mut trial[i * ws..(i + 1) * ws],
-                )
-            } else {
-                (&slip[..0], &mut trial[..0])
-            };
+            // Empty for a law without state (ws = 0).
+            let (sl, tr) = (
+                &slip[i * ws..(i + 1) * ws],
+                &mut trial[i * ws..(i + 1) * ws],
+            );
             let w = bp.qp.weight;
             let kappa;
             let r;
@@ -1051,13 +1026,7 @@ impl Beam {
                 };
             }
         }
-        if !f.iter().all(|v| v.is_finite()) {
-            return Err(BeamError::NonFinite {
-                element: e,
-                x: (e as f64 + 0.5) * self.element_length,
-                quantity: "elastic force",
-            });
-        }
+        self.check_force(e, f.as_slice())?;
         Ok((f, ev, symmetric))
     }
 }

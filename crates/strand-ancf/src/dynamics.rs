@@ -350,16 +350,9 @@ fn verlet(
     let fail = |t: f64, step: usize| move |source| DynamicError::Beam { t, step, source };
     // Acceleration a = M^-1 (Q_g - Q_e) of the free coordinates.
     let accel = |force: &[f64], af: &mut [f64]| {
-        if let Some(span) = beam.free_span() {
-            for ((a, g), f) in af.iter_mut().zip(&g_free).zip(&force[span]) {
-                *a = g - f;
-            }
-        } else {
-            for (g, f) in force.iter().enumerate() {
-                if let Some(i) = beam.free_index(g) {
-                    af[i] = g_free[i] - f;
-                }
-            }
+        gather_free(beam, force, af);
+        for (a, g) in af.iter_mut().zip(&g_free) {
+            *a = g - *a;
         }
         mass.solve(af);
     };
@@ -644,16 +637,9 @@ fn alpha_step(
 /// Newton residual of the free coordinates, `r = M q'' + Q_e - Q_g`, from `mv = M q''`,
 /// the elastic forces of all coordinates and the free gravity forces.
 fn residual(beam: &Beam, mv: &[f64], force: &[f64], g_free: &[f64], r: &mut [f64]) {
-    if let Some(span) = beam.free_span() {
-        for (((ri, m), f), g) in r.iter_mut().zip(mv).zip(&force[span]).zip(g_free) {
-            *ri = m + f - g;
-        }
-        return;
-    }
-    for (g, f) in force.iter().enumerate() {
-        if let Some(i) = beam.free_index(g) {
-            r[i] = mv[i] + f - g_free[i];
-        }
+    gather_free(beam, force, r);
+    for ((ri, m), g) in r.iter_mut().zip(mv).zip(g_free) {
+        *ri = m + *ri - g;
     }
 }
 

@@ -15,6 +15,10 @@ fn strand() -> Strand {
 }
 
 fn beam(kind: LawKind, start: Option<Support>) -> Beam {
+    supported(kind, start, None)
+}
+
+fn supported(kind: LawKind, start: Option<Support>, end: Option<Support>) -> Beam {
     let s = strand();
     Beam::new(
         BeamSpec {
@@ -25,7 +29,7 @@ fn beam(kind: LawKind, start: Option<Support>) -> Beam {
             direction: [1.0, 0.0, 0.0],
             gravity: [0.0, -9.81, 0.0],
             start,
-            end: None,
+            end,
         },
         SectionLaw::new(&s, kind),
     )
@@ -225,27 +229,13 @@ fn rigid_motion_gives_no_force_or_energy() {
 /// so there is none.
 #[test]
 fn free_span_matches_the_free_indices() {
-    let s = strand();
     for (start, end, contiguous) in [
         (Some(Support::Pinned), None, true),
         (Some(Support::Clamped), Some(Support::Clamped), true),
         (None, None, true),
         (Some(Support::Clamped), Some(Support::Pinned), false),
     ] {
-        let b = Beam::new(
-            BeamSpec {
-                elements: 3,
-                bending_points: None,
-                mass_per_length: s.mass_per_length(),
-                element: ElementKind::Planar,
-                direction: [1.0, 0.0, 0.0],
-                gravity: [0.0, -9.81, 0.0],
-                start,
-                end,
-            },
-            SectionLaw::new(&s, LawKind::Constant),
-        )
-        .unwrap();
+        let b = supported(LawKind::Constant, start, end);
         let span = b.free_span();
         assert_eq!(span.is_some(), contiguous, "{start:?} {end:?}");
         if let Some(span) = span {
