@@ -22,6 +22,8 @@ const REPEAT: usize = 3;
 const DURATION: f64 = 1.0;
 /// Spectral radius of the scenes' default generalized-alpha.
 const RHO: f64 = 0.9;
+/// Newton tolerance of the reference run (times the strand length).
+const REFERENCE_INCREMENT: f64 = 1e-12;
 
 /// The pendulum with `points` Gauss points per element for bending (`None`: the pitch rule).
 fn beam(kind: LawKind, points: Option<usize>) -> Beam {
@@ -54,6 +56,7 @@ fn timed(
     scheme: Scheme,
     repeat: usize,
     reference: Option<&[[f64; 2]]>,
+    increment: Option<f64>,
 ) -> (DynamicSummary, Timing, f64, Vec<[f64; 2]>) {
     let mut times = Vec::with_capacity(repeat);
     let mut out = None;
@@ -62,8 +65,14 @@ fn timed(
         if let Ok(v) = std::env::var("PENDULUM_REFRESH") {
             opts.refresh = v.parse().expect("PENDULUM_REFRESH is a number");
         }
+        if let Ok(v) = std::env::var("PENDULUM_REBUILD") {
+            opts.rebuild_rate = v.parse().expect("PENDULUM_REBUILD is a number");
+        }
         if let Ok(v) = std::env::var("PENDULUM_INCREMENT") {
             opts.increment = v.parse().expect("PENDULUM_INCREMENT is a number");
+        }
+        if let Some(v) = increment {
+            opts.increment = v;
         }
         let mut tips = Vec::new();
         let start = Instant::now();
@@ -162,7 +171,7 @@ fn main() {
             let step: f64 = only.parse().expect("PENDULUM_ONLY is a step in seconds");
             let repeat = std::env::var("PENDULUM_REPEAT")
                 .map_or(1, |v| v.parse().expect("PENDULUM_REPEAT is a count"));
-            let (s, t, e, tips) = timed(&b, alpha(step, RHO), repeat, None);
+            let (s, t, e, tips) = timed(&b, alpha(step, RHO), repeat, None, None);
             report(&format!("gen-alpha {step:.1e} s rho {RHO}"), &s, &t, e);
             if let Ok(path) = std::env::var("PENDULUM_TIPS") {
                 let mut out = String::new();
@@ -176,16 +185,23 @@ fn main() {
             }
             continue;
         }
-        // The reference always uses the default quadrature.
+        // The reference always uses the default quadrature, and Newton converged far below
+        // the default tolerance (whose error could add up over its 10,000 steps).
         let reference_beam = beam(kind, None);
-        let (rs, rt, _, reference) = timed(&reference_beam, alpha(1e-4, 1.0), 1, None);
+        let (rs, rt, _, reference) = timed(
+            &reference_beam,
+            alpha(1e-4, 1.0),
+            1,
+            None,
+            Some(REFERENCE_INCREMENT),
+        );
         report("gen-alpha 1e-4 s rho 1 (reference)", &rs, &rt, 0.0);
         let r = Some(reference.as_slice());
-        let (s, t, e, _) = timed(&b, Scheme::Verlet { step: None }, 1, r);
+        let (s, t, e, _) = timed(&b, Scheme::Verlet { step: None }, 1, r, None);
         report(&format!("verlet {:.2e} s", s.time_step), &s, &t, e);
         // Steps that divide the 10 ms output interval, so that frames fall on the same times.
         for step in [1e-3, 2e-3, 2.5e-3, 5e-3, 1e-2] {
-            let (s, t, e, _) = timed(&b, alpha(step, RHO), REPEAT, r);
+            let (s, t, e, _) = timed(&b, alpha(step, RHO), REPEAT, r, None);
             report(&format!("gen-alpha {step:.1e} s rho {RHO}"), &s, &t, e);
         }
     }

@@ -24,6 +24,7 @@
 
 pub mod band;
 pub mod beam;
+mod corotation;
 pub mod dynamics;
 pub mod error;
 pub mod load;
