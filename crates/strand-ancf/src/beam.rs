@@ -23,7 +23,7 @@ use strand_core::{PlanarResponse, SectionLaw, Station};
 use crate::band::BandMatrix;
 use crate::error::{AncfError, check_stretch};
 use crate::load::{planar_gravity, spatial_gravity};
-use crate::mass::{planar_mass, spatial_mass};
+use crate::mass::{VectorMass, hermite_mass, planar_mass, spatial_mass};
 use crate::planar::{self, PlanarAxial, PlanarCoords, PlanarMatrix, PlanarPoint, PlanarVector};
 use crate::scatter;
 use crate::shape::{QuadraturePoint, ShapeRow, element_quadrature, gauss_legendre};
@@ -165,6 +165,7 @@ pub struct Beam {
     q_ref: Vec<f64>,
     gravity_force: Vec<f64>,
     mass: BandMatrix,
+    vector_mass: VectorMass,
     wires: usize,
     /// Coordinates per node.
     nd: usize,
@@ -278,11 +279,25 @@ impl Beam {
                 }
             }
         }
+        let ms = hermite_mass(l) * spec.mass_per_length;
+        let vector_of = |e: usize, a: usize| free_index[(e + a / 2) * nd + (a % 2) * dim];
+        let vector_mass = VectorMass::new(
+            n_free / dim,
+            dim,
+            (0..n).flat_map(|e| {
+                (0..4).flat_map(move |a| {
+                    (0..4).filter_map(move |b| {
+                        Some((vector_of(e, a)? / dim, vector_of(e, b)? / dim, ms[(a, b)]))
+                    })
+                })
+            }),
+        );
         Ok(Beam {
             spec,
             law,
             length,
             element_length: l,
+            vector_mass,
             free_span: free_span(&free_index, n_free),
             free_index,
             n_free,
@@ -340,6 +355,10 @@ impl Beam {
     /// Mass matrix of the free coordinates (kg).
     pub fn mass(&self) -> &BandMatrix {
         &self.mass
+    }
+    /// The same mass matrix in Kronecker form, for fast products.
+    pub fn vector_mass(&self) -> &VectorMass {
+        &self.vector_mass
     }
     /// Half-bandwidth of the free system.
     pub fn bandwidth(&self) -> usize {

@@ -20,18 +20,21 @@ use crate::beam::Beam;
 
 /// Node-wise rotations from the slopes of a reference configuration to the current ones,
 /// applied to vectors of free coordinates.
+///
+/// Supports fix whole position or slope vectors, so the free coordinates are a sequence of
+/// whole vectors: free vector `k` is free coordinates `dim k .. dim (k + 1)`.
 #[derive(Debug, Clone)]
 pub(crate) struct Corotation {
     /// Coordinates per node (4 planar, 6 spatial).
     nd: usize,
     /// Components of a position or slope (2 or 3).
     dim: usize,
-    /// Unit slope directions of the reference configuration, `dim` per node.
+    /// Node of each free vector.
+    node: Vec<usize>,
+    /// Unit slope directions of the reference configuration, `dim` per free vector.
     slopes: Vec<f64>,
-    /// Current rotations, `dim x dim` row-major per node.
+    /// Current rotation of each free vector, `dim x dim` row-major.
     rot: Vec<f64>,
-    /// Free vectors: (free index of the first component, node).
-    groups: Vec<(usize, usize)>,
     /// Whether every rotation is the identity.
     identity: bool,
 }
@@ -41,37 +44,44 @@ impl Corotation {
     pub(crate) fn new(beam: &Beam, q: &[f64]) -> Corotation {
         let nd = beam.node_coords();
         let dim = nd / 2;
-        let nodes = beam.coords() / nd;
-        let mut groups = Vec::new();
-        for node in 0..nodes {
-            for v in 0..2 {
-                let g = node * nd + v * dim;
-                if let Some(i) = beam.free_index(g) {
-                    debug_assert!((1..dim).all(|c| beam.free_index(g + c) == Some(i + c)));
-                    groups.push((i, node));
-                }
+        let mut node = Vec::new();
+        for g in (0..beam.coords()).step_by(dim) {
+            if let Some(i) = beam.free_index(g) {
+                debug_assert_eq!(i, dim * node.len());
+                debug_assert!((1..dim).all(|c| beam.free_index(g + c) == Some(i + c)));
+                node.push(g / nd);
             }
         }
+        debug_assert_eq!(dim * node.len(), beam.dofs());
         let mut c = Corotation {
             nd,
             dim,
-            slopes: vec![0.0; nodes * dim],
-            rot: vec![0.0; nodes * dim * dim],
-            groups,
+            slopes: vec![0.0; node.len() * dim],
+            rot: vec![0.0; node.len() * dim * dim],
+            node,
             identity: true,
         };
         c.reset(q);
         c
     }
 
+    /// The unit slope direction of `node` in `q`.
+    fn slope<const D: usize>(&self, q: &[f64], node: usize) -> [f64; D] {
+        let d = &q[node * self.nd + D..node * self.nd + 2 * D];
+        let n = d.iter().map(|x| x * x).sum::<f64>().sqrt();
+        std::array::from_fn(|c| d[c] / n)
+    }
+
     /// Makes `q` the reference configuration (the iteration matrix was built there).
     pub(crate) fn reset(&mut self, q: &[f64]) {
-        let (nd, dim) = (self.nd, self.dim);
-        for (node, s) in self.slopes.chunks_exact_mut(dim).enumerate() {
-            let d = &q[node * nd + dim..node * nd + 2 * dim];
-            let n = d.iter().map(|x| x * x).sum::<f64>().sqrt();
-            for (a, b) in s.iter_mut().zip(d) {
-                *a = b / n;
+        for k in 0..self.node.len() {
+            let dim = self.dim;
+            if dim == 2 {
+                let s = self.slope::<2>(q, self.node[k]);
+                self.slopes[2 * k..2 * k + 2].copy_from_slice(&s);
+            } else {
+                let s = self.slope::<3>(q, self.node[k]);
+                self.slopes[3 * k..3 * k + 3].copy_from_slice(&s);
             }
         }
         self.identity = true;
@@ -79,40 +89,37 @@ impl Corotation {
 
     /// Updates the rotations to the configuration `q`.
     pub(crate) fn update(&mut self, q: &[f64]) {
-        let (nd, dim) = (self.nd, self.dim);
-        for (node, (a, r)) in self
-            .slopes
-            .chunks_exact(dim)
-            .zip(self.rot.chunks_exact_mut(dim * dim))
-            .enumerate()
-        {
-            let d = &q[node * nd + dim..node * nd + 2 * dim];
-            let n = d.iter().map(|x| x * x).sum::<f64>().sqrt();
-            if dim == 2 {
-                let (bx, by) = (d[0] / n, d[1] / n);
-                let c = a[0] * bx + a[1] * by;
-                let s = a[0] * by - a[1] * bx;
-                r.copy_from_slice(&[c, -s, s, c]);
-            } else {
-                let b = [d[0] / n, d[1] / n, d[2] / n];
-                let k = [
-                    a[1] * b[2] - a[2] * b[1],
-                    a[2] * b[0] - a[0] * b[2],
-                    a[0] * b[1] - a[1] * b[0],
-                ];
-                let c = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-                // Minimal rotation taking a to b: I + [k]x + [k]x^2 / (1 + c).
-                let f = 1.0 / (1.0 + c).max(1e-12);
-                let kx = [[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]];
-                for i in 0..3 {
-                    for j in 0..3 {
-                        let kk: f64 = (0..3).map(|m| kx[i][m] * kx[m][j]).sum();
-                        r[3 * i + j] = f64::from(u8::from(i == j)) + kx[i][j] + f * kk;
-                    }
+        self.identity = false;
+        if self.dim == 2 {
+            for k in 0..self.node.len() {
+                let a = &self.slopes[2 * k..2 * k + 2];
+                let b = self.slope::<2>(q, self.node[k]);
+                let c = a[0] * b[0] + a[1] * b[1];
+                let s = a[0] * b[1] - a[1] * b[0];
+                self.rot[4 * k..4 * k + 4].copy_from_slice(&[c, -s, s, c]);
+            }
+            return;
+        }
+        for k in 0..self.node.len() {
+            let a = &self.slopes[3 * k..3 * k + 3];
+            let b = self.slope::<3>(q, self.node[k]);
+            let v = [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ];
+            let c = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+            // Minimal rotation taking a to b: I + [v]x + [v]x^2 / (1 + c).
+            let f = 1.0 / (1.0 + c).max(1e-12);
+            let vx = [[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]];
+            let r = &mut self.rot[9 * k..9 * k + 9];
+            for i in 0..3 {
+                for j in 0..3 {
+                    let vv: f64 = (0..3).map(|m| vx[i][m] * vx[m][j]).sum();
+                    r[3 * i + j] = f64::from(u8::from(i == j)) + vx[i][j] + f * vv;
                 }
             }
         }
-        self.identity = false;
     }
 
     /// `x <- R^T x` (`transpose`) or `x <- R x`, for a vector of free coordinates.
@@ -120,29 +127,33 @@ impl Corotation {
         if self.identity {
             return;
         }
-        let dim = self.dim;
-        for &(i, node) in &self.groups {
-            let r = &self.rot[node * dim * dim..(node + 1) * dim * dim];
-            if dim == 2 {
-                let (a, b) = (x[i], x[i + 1]);
-                let s = if transpose { -r[2] } else { r[2] };
-                x[i] = r[0] * a - s * b;
-                x[i + 1] = s * a + r[0] * b;
-            } else {
-                let v = [x[i], x[i + 1], x[i + 2]];
-                for (row, out) in x[i..i + 3].iter_mut().enumerate() {
-                    *out = (0..3)
-                        .map(|col| {
-                            let m = if transpose {
-                                r[3 * col + row]
-                            } else {
-                                r[3 * row + col]
-                            };
-                            m * v[col]
-                        })
-                        .sum();
-                }
+        if self.dim == 2 {
+            let sign = if transpose { -1.0 } else { 1.0 };
+            for (v, r) in x
+                .as_chunks_mut::<2>()
+                .0
+                .iter_mut()
+                .zip(self.rot.as_chunks::<4>().0)
+            {
+                let (c, s) = (r[0], sign * r[2]);
+                *v = [c * v[0] - s * v[1], s * v[0] + c * v[1]];
             }
+            return;
+        }
+        for (v, r) in x
+            .as_chunks_mut::<3>()
+            .0
+            .iter_mut()
+            .zip(self.rot.as_chunks::<9>().0)
+        {
+            let m = |i: usize, j: usize| {
+                if transpose {
+                    r[3 * j + i]
+                } else {
+                    r[3 * i + j]
+                }
+            };
+            *v = std::array::from_fn(|i| m(i, 0) * v[0] + m(i, 1) * v[1] + m(i, 2) * v[2]);
         }
     }
 }

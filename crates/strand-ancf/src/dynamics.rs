@@ -266,7 +266,7 @@ impl Ledger {
         mv: &mut [f64],
         elastic: f64,
     ) -> Energies {
-        beam.mass().mul_vec(vf, mv);
+        beam.vector_mass().mul_vec(vf, mv);
         let kinetic = 0.5 * vf.iter().zip(mv.iter()).map(|(a, b)| a * b).sum::<f64>();
         let e = Energies {
             t,
@@ -559,7 +559,7 @@ fn alpha_step(
         ) else {
             break;
         };
-        beam.mass().mul_vec(&st.acc, &mut w.mv);
+        beam.vector_mass().mul_vec(&st.acc, &mut w.mv);
         residual(beam, &w.mv, &w.force, &w.g_free, &mut w.r);
         if fresh {
             w.k.add_scaled(beta_p, beam.mass());

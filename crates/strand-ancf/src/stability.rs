@@ -74,7 +74,7 @@ fn largest_eigenvalue(beam: &Beam) -> Result<f64, BeamError> {
     let mut mx = vec![0.0; n];
     let mut w = vec![0.0; n];
     let m_norm = |x: &[f64], mx: &mut [f64]| -> f64 {
-        beam.mass().mul_vec(x, mx);
+        beam.vector_mass().mul_vec(x, mx);
         dot(x, mx).max(0.0).sqrt()
     };
     let norm = m_norm(&x, &mut mx);
