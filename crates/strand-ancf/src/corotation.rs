@@ -18,6 +18,10 @@
 
 use crate::beam::Beam;
 
+/// Slopes shorter than this have no direction to turn with (the element checks reject far
+/// larger compressions, so this only guards the division).
+const MIN_SLOPE: f64 = 1e-12;
+
 /// Node-wise rotations from the slopes of a reference configuration to the current ones,
 /// applied to vectors of free coordinates.
 ///
@@ -65,11 +69,16 @@ impl Corotation {
         c
     }
 
-    /// The unit slope direction of `node` in `q`.
+    /// The unit slope direction of `node` in `q`; NaN where the slope is too short to have
+    /// a direction (that node then keeps the identity).
     fn slope<const D: usize>(&self, q: &[f64], node: usize) -> [f64; D] {
         let d = &q[node * self.nd + D..node * self.nd + 2 * D];
         let n = d.iter().map(|x| x * x).sum::<f64>().sqrt();
-        std::array::from_fn(|c| d[c] / n)
+        if n > MIN_SLOPE {
+            std::array::from_fn(|c| d[c] / n)
+        } else {
+            [f64::NAN; D]
+        }
     }
 
     /// Makes `q` the reference configuration (the iteration matrix was built there).
@@ -94,8 +103,10 @@ impl Corotation {
             for k in 0..self.node.len() {
                 let a = &self.slopes[2 * k..2 * k + 2];
                 let b = self.slope::<2>(q, self.node[k]);
-                let c = a[0] * b[0] + a[1] * b[1];
-                let s = a[0] * b[1] - a[1] * b[0];
+                let (mut c, mut s) = (a[0] * b[0] + a[1] * b[1], a[0] * b[1] - a[1] * b[0]);
+                if !(c.is_finite() && s.is_finite()) {
+                    (c, s) = (1.0, 0.0);
+                }
                 self.rot[4 * k..4 * k + 4].copy_from_slice(&[c, -s, s, c]);
             }
             return;
@@ -109,10 +120,15 @@ impl Corotation {
                 a[0] * b[1] - a[1] * b[0],
             ];
             let c = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-            // Minimal rotation taking a to b: I + [v]x + [v]x^2 / (1 + c).
-            let f = 1.0 / (1.0 + c).max(1e-12);
-            let vx = [[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]];
             let r = &mut self.rot[9 * k..9 * k + 9];
+            // Minimal rotation taking a to b: I + [v]x + [v]x^2 / (1 + c); the identity where
+            // a direction is missing or the slope has turned nearly around (no unique axis).
+            if c.is_nan() || c <= -0.5 {
+                r.copy_from_slice(&[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]);
+                continue;
+            }
+            let f = 1.0 / (1.0 + c);
+            let vx = [[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]];
             for i in 0..3 {
                 for j in 0..3 {
                     let vv: f64 = (0..3).map(|m| vx[i][m] * vx[m][j]).sum();
@@ -263,6 +279,41 @@ mod tests {
                 for (a, b) in x.iter().zip(&x0) {
                     assert!((a - b).abs() <= 1e-15);
                 }
+            }
+        }
+    }
+
+    /// A node whose slope has no direction (zero length), or whose slope has turned nearly
+    /// around in space, keeps the identity instead of spreading NaN or a huge rotation.
+    #[test]
+    fn degenerate_slopes_keep_the_identity() {
+        for element in [ElementKind::Planar, ElementKind::Spatial] {
+            let beam = beam(element, Some(Support::Pinned));
+            let nd = beam.node_coords();
+            let dim = nd / 2;
+            let q0 = arc(&beam, 4.0, 0.0, 0.0);
+            let mut q1 = arc(&beam, 4.0, 0.0, 0.3);
+            // Node 2: no slope; node 3: slope reversed.
+            q1[2 * nd + dim..2 * nd + 2 * dim].fill(0.0);
+            for c in 0..dim {
+                q1[3 * nd + dim + c] = -q0[3 * nd + dim + c];
+            }
+            let mut rot = Corotation::new(&beam, &q0);
+            rot.update(&q1);
+            let n = beam.dofs();
+            let x0: Vec<f64> = (0..n).map(|i| 1.0 + (i as f64).sin()).collect();
+            let mut x = x0.clone();
+            rot.apply(&mut x, false);
+            assert!(x.iter().all(|v| v.is_finite()), "{element:?}");
+            // Free vectors of node 2 (position, slope) are 2 * 2 - 1 and 2 * 2 (the pinned
+            // node 0 has only its slope free).
+            for g in [3, 4] {
+                let r = dim * g..dim * (g + 1);
+                assert_eq!(x[r.clone()], x0[r], "{element:?}: free vector {g}");
+            }
+            if element == ElementKind::Spatial {
+                let r = 3 * 5..3 * 7;
+                assert_eq!(x[r.clone()], x0[r], "reversed slope");
             }
         }
     }
