@@ -6,9 +6,9 @@
 //!   ([`stable_step`], Lanczos on `M^-1 K`).
 //! * Generalized-alpha (Chung-Hulbert parameters in the Arnold-Bruels form), implicit: Newton
 //!   on `S = beta' M + K` with the analytic tangent and a band LDL^T (LU when not symmetric).
-//!   The factorized matrix is kept over iterations and steps and turned with the strand
-//!   (module `corotation`); it is rebuilt when Newton slows. Spectral radius 1 gives the
-//!   trapezoidal rule (no numerical damping).
+//!   The factorized matrix is kept over iterations and steps (with a linear law also turned
+//!   with the strand, module `corotation`) and rebuilt when Newton slows. Spectral radius 1
+//!   gives the trapezoidal rule (no numerical damping).
 //!
 //! Energy accounting (SPEC 2): kinetic `1/2 v^T M v`, gravity `-Q_g . (q - q_0)`, elastic (the
 //! section laws' stored energy), and dissipated: the hysteretic law's slip work plus the work
@@ -68,9 +68,9 @@ pub struct DynamicOptions {
     /// correction shrinks by less than this factor (0: full Newton; 1: rebuilt only when
     /// Newton stalls).
     pub refresh: f64,
-    /// Generalized-alpha: the next step starts with a fresh iteration matrix when the last
-    /// correction of a step shrank by less than this factor with a kept (co-rotated) matrix.
-    /// A kept matrix contracts more slowly as it ages (by about 2e-3 per step on the
+    /// Generalized-alpha, linear section law: the next step starts with a fresh iteration
+    /// matrix when the last correction of a step shrank by less than this factor with a kept
+    /// (co-rotated) matrix. A kept matrix contracts more slowly as it ages (by about 2e-3 per step on the
     /// section-3 pendulum at 1e-3 s steps with the zero-acceleration predictor), and at a
     /// rate theta a step's second iterate is left with about theta^2 times the predictor's
     /// error: steps converge in two iterations while theta stays below about 0.02. On that
@@ -524,13 +524,16 @@ fn alpha_step(
     let tol = opts.increment * beam.length();
     let level = w.saved.len() - depth - 1;
     w.saved[level].copy_from(st);
+    // A linear section law gives smooth forces: the predictor extrapolates and the kept
+    // matrix turns with the strand (below). The stick/slip laws keep the plain scheme.
+    let smooth = beam.law().is_linear();
     // Predictor: constant acceleration, q''_{n+1} = q''_n, for a linear section law; zero
     // acceleration for the stick/slip laws, where extrapolating carries wires past their slip
     // limits. On the section-3 pendulum at 1e-3 s steps the constant acceleration leaves
     // the constant law's first correction about ten times smaller, so the co-rotated matrix
     // of the first step serves the whole run (2012 iterations and 2 matrices against 2287
     // and 51 with zero acceleration), but costs the stick/slip laws 3-7 % more iterations.
-    let extrapolate = if beam.law().is_linear() { 1.0 } else { 0.0 };
+    let extrapolate = if smooth { 1.0 } else { 0.0 };
     for i in 0..nf {
         let pa = extrapolate * st.acc[i];
         w.acc_pred[i] = pa;
@@ -542,11 +545,16 @@ fn alpha_step(
     }
     add_free(beam, &mut st.q, 1.0, &w.dq);
     // Modified Newton: the factorized iteration matrix S = beta' M + K is kept across
-    // iterations and steps, turned node by node with the strand since it was built
-    // (`dq = R S^-1 R^T r`), and rebuilt when the step size changes, when a correction shrinks
-    // by less than `opts.refresh` (within the step) or when the last step's final contraction
-    // was slower than `opts.rebuild_rate` (at this step's start); every force evaluation is
-    // exact, so the converged state is the same as with full Newton.
+    // iterations and steps and rebuilt when the step size changes or a correction shrinks by
+    // less than `opts.refresh`; every force evaluation is exact, so the converged state is the
+    // same as with full Newton. With a linear law the kept matrix is also turned node by node
+    // with the strand since it was built (`dq = R S^-1 R^T r`), and rebuilt at a step's start
+    // when the last step's final contraction was slower than `opts.rebuild_rate`. Not with
+    // the stick/slip laws: on the section-3 pendulum they gained nothing from either (their
+    // iterations go to the changing set of slipping wires), and where the strand chatters
+    // (`long-run-100s` of `cargo xtask hard`, a hanging strand with its tip compressed) the
+    // slopes wiggle from node to node, the turned matrix took 30 % more iterations, and one
+    // step cycled between two slip sets down to steps of 5e-7 s.
     let mut iterations = 0;
     let mut outcome = None;
     let mut fresh = w.factor_h != h || w.stale;
@@ -579,7 +587,7 @@ fn alpha_step(
             }
             w.factor_h = h;
             w.rot.reset(&st.q);
-        } else {
+        } else if smooth {
             w.rot.update(&st.q);
         }
         w.dq.copy_from_slice(&w.r);
@@ -630,7 +638,7 @@ fn alpha_step(
             f64::INFINITY
         };
         if dn <= tol || left <= tol || (relax < 1.0 && dn <= opts.stagnation * beam.length()) {
-            if !fresh && theta.is_finite() && theta > opts.rebuild_rate {
+            if smooth && !fresh && theta.is_finite() && theta > opts.rebuild_rate {
                 w.stale = true;
             }
             outcome = Some(ev);
