@@ -23,7 +23,7 @@ use strand_core::{PlanarResponse, SectionLaw, Station};
 use crate::band::BandMatrix;
 use crate::error::{AncfError, check_stretch};
 use crate::load::{planar_gravity, spatial_gravity};
-use crate::mass::{VectorMass, hermite_mass, planar_mass, spatial_mass};
+use crate::mass::{VectorMass, planar_mass, spatial_mass};
 use crate::planar::{self, PlanarAxial, PlanarCoords, PlanarMatrix, PlanarPoint, PlanarVector};
 use crate::scatter;
 use crate::shape::{QuadraturePoint, ShapeRow, element_quadrature, gauss_legendre};
@@ -279,19 +279,7 @@ impl Beam {
                 }
             }
         }
-        let ms = hermite_mass(l) * spec.mass_per_length;
-        let vector_of = |e: usize, a: usize| free_index[(e + a / 2) * nd + (a % 2) * dim];
-        let vector_mass = VectorMass::new(
-            n_free / dim,
-            dim,
-            (0..n).flat_map(|e| {
-                (0..4).flat_map(move |a| {
-                    (0..4).filter_map(move |b| {
-                        Some((vector_of(e, a)? / dim, vector_of(e, b)? / dim, ms[(a, b)]))
-                    })
-                })
-            }),
-        );
+        let vector_mass = VectorMass::from_band(&mass, dim);
         Ok(Beam {
             spec,
             law,

@@ -69,27 +69,19 @@ impl Corotation {
         c
     }
 
-    /// The unit slope direction of `node` in `q`; NaN where the slope is too short to have
-    /// a direction (that node then keeps the identity).
-    fn slope<const D: usize>(&self, q: &[f64], node: usize) -> [f64; D] {
-        let d = &q[node * self.nd + D..node * self.nd + 2 * D];
-        let n = d.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if n > MIN_SLOPE {
-            std::array::from_fn(|c| d[c] / n)
-        } else {
-            [f64::NAN; D]
-        }
+    /// Coordinates of the node of free vector `k` in `q`.
+    fn node<'q>(&self, q: &'q [f64], k: usize) -> &'q [f64] {
+        &q[self.node[k] * self.nd..(self.node[k] + 1) * self.nd]
     }
 
     /// Makes `q` the reference configuration (the iteration matrix was built there).
     pub(crate) fn reset(&mut self, q: &[f64]) {
         for k in 0..self.node.len() {
-            let dim = self.dim;
-            if dim == 2 {
-                let s = self.slope::<2>(q, self.node[k]);
+            if self.dim == 2 {
+                let s = slope_direction::<2>(self.node(q, k));
                 self.slopes[2 * k..2 * k + 2].copy_from_slice(&s);
             } else {
-                let s = self.slope::<3>(q, self.node[k]);
+                let s = slope_direction::<3>(self.node(q, k));
                 self.slopes[3 * k..3 * k + 3].copy_from_slice(&s);
             }
         }
@@ -99,41 +91,21 @@ impl Corotation {
     /// Updates the rotations to the configuration `q`.
     pub(crate) fn update(&mut self, q: &[f64]) {
         self.identity = false;
-        if self.dim == 2 {
-            for k in 0..self.node.len() {
-                let a = &self.slopes[2 * k..2 * k + 2];
-                let b = self.slope::<2>(q, self.node[k]);
-                let (mut c, mut s) = (a[0] * b[0] + a[1] * b[1], a[0] * b[1] - a[1] * b[0]);
-                if !(c.is_finite() && s.is_finite()) {
-                    (c, s) = (1.0, 0.0);
-                }
-                self.rot[4 * k..4 * k + 4].copy_from_slice(&[c, -s, s, c]);
-            }
-            return;
-        }
+        let dd = self.dim * self.dim;
         for k in 0..self.node.len() {
-            let a = &self.slopes[3 * k..3 * k + 3];
-            let b = self.slope::<3>(q, self.node[k]);
-            let v = [
-                a[1] * b[2] - a[2] * b[1],
-                a[2] * b[0] - a[0] * b[2],
-                a[0] * b[1] - a[1] * b[0],
-            ];
-            let c = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-            let r = &mut self.rot[9 * k..9 * k + 9];
-            // Minimal rotation taking a to b: I + [v]x + [v]x^2 / (1 + c); the identity where
-            // a direction is missing or the slope has turned nearly around (no unique axis).
-            if c.is_nan() || c <= -0.5 {
-                r.copy_from_slice(&[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]);
+            // A node's position and slope turn together: computed once per node.
+            if k > 0 && self.node[k] == self.node[k - 1] {
+                self.rot.copy_within(dd * (k - 1)..dd * k, dd * k);
                 continue;
             }
-            let f = 1.0 / (1.0 + c);
-            let vx = [[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]];
-            for i in 0..3 {
-                for j in 0..3 {
-                    let vv: f64 = (0..3).map(|m| vx[i][m] * vx[m][j]).sum();
-                    r[3 * i + j] = f64::from(u8::from(i == j)) + vx[i][j] + f * vv;
-                }
+            let d = self.node(q, k);
+            let r = &mut self.rot[dd * k..dd * (k + 1)];
+            if self.dim == 2 {
+                let b = slope_direction::<2>(d);
+                r.copy_from_slice(&planar_turn(&self.slopes[2 * k..2 * k + 2], &b));
+            } else {
+                let b = slope_direction::<3>(d);
+                r.copy_from_slice(&minimal_turn(&self.slopes[3 * k..3 * k + 3], &b));
             }
         }
     }
@@ -172,6 +144,51 @@ impl Corotation {
             *v = std::array::from_fn(|i| m(i, 0) * v[0] + m(i, 1) * v[1] + m(i, 2) * v[2]);
         }
     }
+}
+
+/// The unit direction of the slope of a node with coordinates `node` (position, slope); NaN
+/// where the slope is too short to have one (that node then keeps the identity).
+fn slope_direction<const D: usize>(node: &[f64]) -> [f64; D] {
+    let d = &node[D..2 * D];
+    let n = d.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if n > MIN_SLOPE {
+        std::array::from_fn(|c| d[c] / n)
+    } else {
+        [f64::NAN; D]
+    }
+}
+
+/// The plane rotation (row-major) taking the unit direction `a` to `b`; the identity where
+/// a direction is missing.
+fn planar_turn(a: &[f64], b: &[f64; 2]) -> [f64; 4] {
+    let (c, s) = (a[0] * b[0] + a[1] * b[1], a[0] * b[1] - a[1] * b[0]);
+    if c.is_finite() && s.is_finite() {
+        [c, -s, s, c]
+    } else {
+        [1.0, 0.0, 0.0, 1.0]
+    }
+}
+
+/// The minimal rotation (row-major) taking the unit direction `a` to `b`,
+/// `I + [v]x + [v]x^2 / (1 + c)` with `v = a x b` and `c = a . b`; the identity where a
+/// direction is missing or `b` has turned nearly around (no unique axis).
+fn minimal_turn(a: &[f64], b: &[f64; 3]) -> [f64; 9] {
+    let v = [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ];
+    let c = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    if c.is_nan() || c <= -0.5 {
+        return [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
+    }
+    let f = 1.0 / (1.0 + c);
+    let vx = [[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]];
+    std::array::from_fn(|ij| {
+        let (i, j) = (ij / 3, ij % 3);
+        let vv: f64 = (0..3).map(|m| vx[i][m] * vx[m][j]).sum();
+        f64::from(u8::from(i == j)) + vx[i][j] + f * vv
+    })
 }
 
 #[cfg(test)]

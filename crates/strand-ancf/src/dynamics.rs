@@ -70,13 +70,14 @@ pub struct DynamicOptions {
     /// Newton stalls).
     pub refresh: f64,
     /// Generalized-alpha, linear section law: the next step starts with a fresh iteration
-    /// matrix when the last correction of a step shrank by less than this factor with a kept
-    /// (co-rotated) matrix. A kept matrix contracts more slowly as it ages (by about 2e-3 per step on the
-    /// section-3 pendulum at 1e-3 s steps with the zero-acceleration predictor), and at a
-    /// rate theta a step's second iterate is left with about theta^2 times the predictor's
-    /// error: steps converge in two iterations while theta stays below about 0.02. On that
-    /// pendulum (constant law) at 2.5e-3 s steps, 0.02 takes 944 iterations and 55 matrices,
-    /// against 1430 and 9 without rebuilds between steps (`f64::INFINITY`): 28 % less time.
+    /// matrix when the last correction of a step shrank by less than this factor with a
+    /// kept (co-rotated) matrix. A kept matrix contracts more slowly as it ages (by about
+    /// 2e-3 per step on the section-3 pendulum at 1e-3 s steps with the zero-acceleration
+    /// predictor), and at a rate theta a step's second iterate is left with about theta^2
+    /// times the predictor's error: steps converge in two iterations while theta stays
+    /// below about 0.02. On that pendulum (constant law) at 2.5e-3 s steps, 0.02 takes 944
+    /// iterations and 55 matrices, against 1430 and 9 without rebuilds between steps
+    /// (`f64::INFINITY`): 28 % less time.
     pub rebuild_rate: f64,
 }
 

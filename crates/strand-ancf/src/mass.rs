@@ -13,6 +13,7 @@
 
 use nalgebra::{Matrix4, SMatrix};
 
+use crate::band::BandMatrix;
 use crate::planar::PlanarMatrix;
 use crate::spatial::SpatialMatrix;
 
@@ -68,18 +69,18 @@ pub struct VectorMass {
 }
 
 impl VectorMass {
-    /// `M_s (x) I_dim` for the scalar matrix `m_s` of `n` free vectors, given entry by entry:
-    /// `entries` yields `(a, b, m)` for `|a - b| <= 3` (repeated pairs add).
-    pub fn new(
-        n: usize,
-        dim: usize,
-        entries: impl IntoIterator<Item = (usize, usize, f64)>,
-    ) -> Self {
-        let mut rows = vec![[0.0; 7]; n];
-        for (a, b, m) in entries {
-            debug_assert!(a.abs_diff(b) <= 3);
-            rows[a][b + 3 - a] += m;
-        }
+    /// The Kronecker form of the assembled free mass matrix `m` of vectors of `dim`
+    /// components: `M_s` is read from the first component of each vector.
+    pub fn from_band(m: &BandMatrix, dim: usize) -> Self {
+        let n = m.n() / dim;
+        let rows = (0..n)
+            .map(|a| {
+                std::array::from_fn(|o| match (a + o).checked_sub(3) {
+                    Some(b) if b < n => m.get(dim * a, dim * b),
+                    _ => 0.0,
+                })
+            })
+            .collect();
         VectorMass { rows, dim }
     }
 
