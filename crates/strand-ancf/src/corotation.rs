@@ -91,21 +91,31 @@ impl Corotation {
     /// Updates the rotations to the configuration `q`.
     pub(crate) fn update(&mut self, q: &[f64]) {
         self.identity = false;
-        let dd = self.dim * self.dim;
-        for k in 0..self.node.len() {
-            // A node's position and slope turn together: computed once per node.
-            if k > 0 && self.node[k] == self.node[k - 1] {
-                self.rot.copy_within(dd * (k - 1)..dd * k, dd * k);
-                continue;
+        let Corotation {
+            nd,
+            node,
+            slopes,
+            rot,
+            ..
+        } = self;
+        let at = |k: usize| &q[node[k] * *nd..(node[k] + 1) * *nd];
+        // A node's position and slope turn together: one rotation per node.
+        let first = |k: usize| k == 0 || node[k] != node[k - 1];
+        if self.dim == 2 {
+            let mut turn = [0.0; 4];
+            for (k, r) in rot.as_chunks_mut::<4>().0.iter_mut().enumerate() {
+                if first(k) {
+                    turn = planar_turn(&slopes[2 * k..2 * k + 2], &slope_direction(at(k)));
+                }
+                *r = turn;
             }
-            let d = self.node(q, k);
-            let r = &mut self.rot[dd * k..dd * (k + 1)];
-            if self.dim == 2 {
-                let b = slope_direction::<2>(d);
-                r.copy_from_slice(&planar_turn(&self.slopes[2 * k..2 * k + 2], &b));
-            } else {
-                let b = slope_direction::<3>(d);
-                r.copy_from_slice(&minimal_turn(&self.slopes[3 * k..3 * k + 3], &b));
+        } else {
+            let mut turn = [0.0; 9];
+            for (k, r) in rot.as_chunks_mut::<9>().0.iter_mut().enumerate() {
+                if first(k) {
+                    turn = minimal_turn(&slopes[3 * k..3 * k + 3], &slope_direction(at(k)));
+                }
+                *r = turn;
             }
         }
     }
