@@ -1,0 +1,153 @@
+//! The global elastic forces `Q_e` (eq. (28)) and their tangent: element contributions
+//! summed over the mesh and scattered into the free coordinates' band matrix.
+
+#[cfg(test)]
+use nalgebra::DMatrix;
+
+use super::{Beam, BeamError, ElementKind, Evaluation, PointState};
+use crate::band::BandMatrix;
+use crate::planar::PlanarMatrix;
+use crate::spatial::SpatialMatrix;
+
+impl Beam {
+    /// Evaluates the generalized elastic forces `Q_e` (eq. (28)) into `force` (all
+    /// coordinates, overwritten) and, if given, the tangent `dQ_e/dq` of the free coordinates
+    /// into `tangent` (overwritten). `slip`/`trial` are the law's committed and trial state
+    /// ([`Self::state_len`]); `points`, if given, receives the state at every bending point.
+    pub fn internal(
+        &self,
+        q: &[f64],
+        slip: &[f64],
+        trial: &mut [f64],
+        force: &mut [f64],
+        mut tangent: Option<&mut BandMatrix>,
+        mut points: Option<&mut [PointState]>,
+    ) -> Result<Evaluation, BeamError> {
+        force.fill(0.0);
+        if let Some(t) = tangent.as_deref_mut() {
+            t.fill_zero();
+        }
+        let nd = self.nd;
+        let ws = self.state_per_point();
+        let mut sum = Evaluation::default();
+        let mut kp = PlanarMatrix::zeros();
+        let mut ks = SpatialMatrix::zeros();
+        let mut p0 = 0;
+        for (e, rule) in self.rules.iter().enumerate() {
+            let np = rule.bend.len();
+            let (s0, s1) = (p0 * ws, (p0 + np) * ws);
+            let (sl, tl) = (slip.len(), trial.len());
+            let sl = &slip[s0.min(sl)..s1.min(sl)];
+            let tr = &mut trial[s0.min(tl)..s1.min(tl)];
+            let pts = points.as_deref_mut().map(|p| &mut p[p0..p0 + np]);
+            let want_k = tangent.is_some();
+            let (ke, ev, sym): (&[f64], Evaluation, bool) = match self.spec.element {
+                ElementKind::Planar => {
+                    let qe = self.planar_coords(q, e);
+                    let (f, ev, sym) = if want_k {
+                        self.element_planar(e, rule, &qe, sl, tr, Some(&mut kp), pts)?
+                    } else {
+                        let (f, ev) = self.planar_forces(e, rule, &qe, sl, tr, pts)?;
+                        (f, ev, true)
+                    };
+                    for a in 0..8 {
+                        force[e * nd + a] += f[a];
+                    }
+                    (kp.as_slice(), ev, sym)
+                }
+                ElementKind::Spatial => {
+                    let qe = self.spatial_coords(q, e);
+                    let (f, ev, sym) =
+                        self.element_spatial(e, rule, &qe, sl, tr, want_k.then_some(&mut ks), pts)?;
+                    for a in 0..12 {
+                        force[e * nd + a] += f[a];
+                    }
+                    (ks.as_slice(), ev, sym)
+                }
+            };
+            p0 += np;
+            sum.energy += ev.energy;
+            sum.slip_work += ev.slip_work;
+            sum.slipping += ev.slipping;
+            if let Some(t) = tangent.as_deref_mut() {
+                // Element matrices are column-major, 2 nd x 2 nd.
+                let m = 2 * nd;
+                if let (Some(i0), Some(i1)) =
+                    (self.free_index[e * nd], self.free_index[e * nd + m - 1])
+                    && i1 == i0 + m - 1
+                {
+                    // Every coordinate of the element is free: one dense block.
+                    t.add_block(i0, m, ke, sym);
+                    continue;
+                }
+                if sym {
+                    // Mirror the lower triangle: the global matrix is then exactly symmetric
+                    // (each mirrored pair sums the same values in the same order), which lets
+                    // the solver use LDL^T.
+                    for b in 0..m {
+                        let Some(ib) = self.free_index[e * nd + b] else {
+                            continue;
+                        };
+                        for a in b..m {
+                            if let Some(ia) = self.free_index[e * nd + a] {
+                                let v = ke[a + b * m];
+                                t.add(ia, ib, v);
+                                if a != b {
+                                    t.add(ib, ia, v);
+                                }
+                            }
+                        }
+                    }
+                    continue;
+                }
+                for b in 0..m {
+                    let Some(ib) = self.free_index[e * nd + b] else {
+                        continue;
+                    };
+                    for a in 0..m {
+                        if let Some(ia) = self.free_index[e * nd + a] {
+                            t.add(ia, ib, ke[a + b * m]);
+                        }
+                    }
+                }
+            }
+        }
+        Ok(sum)
+    }
+
+    /// `Ok` if the element force `f` of element `e` is finite.
+    pub(super) fn check_force(&self, e: usize, f: &[f64]) -> Result<(), BeamError> {
+        if f.iter().all(|v| v.is_finite()) {
+            return Ok(());
+        }
+        Err(BeamError::NonFinite {
+            element: e,
+            x: (e as f64 + 0.5) * self.element_length,
+            quantity: "elastic force",
+        })
+    }
+
+    /// Tangent of element `e` alone at coordinates `q`, from a state without slip (for the
+    /// stable-step bound).
+    #[cfg(test)]
+    pub(crate) fn element_tangent(&self, e: usize, q: &[f64]) -> Result<DMatrix<f64>, BeamError> {
+        let rule = &self.rules[e];
+        let ws = self.state_per_point();
+        let slip = vec![0.0; rule.bend.len() * ws];
+        let mut trial = slip.clone();
+        Ok(match self.spec.element {
+            ElementKind::Planar => {
+                let mut k = PlanarMatrix::zeros();
+                let qe = self.planar_coords(q, e);
+                self.element_planar(e, rule, &qe, &slip, &mut trial, Some(&mut k), None)?;
+                DMatrix::from_column_slice(8, 8, k.as_slice())
+            }
+            ElementKind::Spatial => {
+                let mut k = SpatialMatrix::zeros();
+                let qe = self.spatial_coords(q, e);
+                self.element_spatial(e, rule, &qe, &slip, &mut trial, Some(&mut k), None)?;
+                DMatrix::from_column_slice(12, 12, k.as_slice())
+            }
+        })
+    }
+}

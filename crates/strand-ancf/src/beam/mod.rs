@@ -1,0 +1,345 @@
+//! The equivalent strand beam: a mesh of cable elements, planar (4 coordinates per node) or
+//! spatial (6, eq. (24)), carrying a section law, with supports eliminated, its constant mass
+//! matrix (eq. (44)), gravity load (eq. (45)) and the assembly of the generalized elastic
+//! forces (eq. (28)) and their analytic tangent.
+//!
+//! Modules, one job each:
+//! * `quadrature`: the axial, hourglass and bending integration points of an element;
+//! * `supports`: which coordinates the supports hold, and the free coordinates' numbering;
+//! * `inertia`: the constant mass matrix of the free coordinates (eq. (44));
+//! * `loads`: the generalized gravity force (eq. (45));
+//! * `assembly`: the global elastic force and tangent from the element contributions;
+//! * `planar_element`, `spatial_element`: one element's forces and tangent;
+//! * `sampling`: position and slope at any material coordinate.
+//!
+//! # Quadrature
+//!
+//! * Axial term: 2 Gauss points per element (reduced). A cubic cable element cannot bend into
+//!   an arc without stretching; fully integrated, that parasitic strain stiffens thin strands
+//!   (membrane locking: EA l^2 / EI is of order 10^3-10^7 here). With 3 points the tip error
+//!   of the q L^3/EI = 5 elastica at 16 elements and EA L^2/EI = 1e7 is 3.9e-4 L (order 2.5);
+//!   with 2 points it is 1.2e-6 L (order 3.5) (`tests/statics.rs`). The strain used by the
+//!   section law for the wire tension is the assumed field `eps_bar`, linear through the two
+//!   axial points, so the friction limits see the strand's tension, not the parasitic strain.
+//!   The one zero-energy mode that two points leave is held by a weak penalty ([`HOURGLASS`]).
+//! * Bending term: the wire phases turn once per pitch P, and each wire switches between stick
+//!   and slip inside an element longer than P/2, so the default rule is composite: 3 Gauss points
+//!   on each of `ceil(4 l / P)` equal sub-intervals (a sub-interval spans at most a quarter
+//!   pitch). Laws without wires use 4 Gauss points. A scene can ask for n Gauss points instead.
+
+mod assembly;
+mod inertia;
+mod loads;
+mod planar_element;
+mod quadrature;
+mod sampling;
+mod spatial_element;
+mod supports;
+
+use nalgebra::{DMatrix, Vector3};
+use strand_core::SectionLaw;
+
+use crate::band::BandMatrix;
+use crate::error::AncfError;
+use crate::mass::VectorMass;
+use crate::planar::PlanarCoords;
+use crate::spatial::{SectionFrame, SpatialCoords};
+
+pub(crate) use quadrature::{BendPoint, ElementRule};
+
+/// Which cable element a beam uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ElementKind {
+    /// Planar element in the XY plane: (r_x, r_y, r'_x, r'_y) per node.
+    Planar,
+    /// Spatial element: (r, r') per node (eq. (24)); curvature components in the section
+    /// frame carried by the minimal rotation from the straight strand's frame.
+    Spatial,
+}
+
+/// How an end of the beam is held.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Support {
+    /// Position and slope fixed.
+    Clamped,
+    /// Position fixed.
+    Pinned,
+}
+
+/// What a beam is built from (besides its section law).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BeamSpec {
+    /// Number of elements.
+    pub elements: usize,
+    /// Gauss points per element for the bending term; `None` for the pitch rule.
+    pub bending_points: Option<usize>,
+    /// Mass per length (kg/m).
+    pub mass_per_length: f64,
+    /// Element kind.
+    pub element: ElementKind,
+    /// Unit direction of the straight initial strand (in the XY plane for planar elements).
+    pub direction: [f64; 3],
+    /// Gravitational acceleration (m/s^2; in the XY plane for planar elements).
+    pub gravity: [f64; 3],
+    /// Support at x = 0.
+    pub start: Option<Support>,
+    /// Support at x = L.
+    pub end: Option<Support>,
+}
+
+/// Errors of building or evaluating a beam.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BeamError {
+    /// Kinematics failed in an element.
+    #[error("element {element}: {source}")]
+    Kinematics {
+        /// 0-based element index.
+        element: usize,
+        /// What failed.
+        source: AncfError,
+    },
+    /// A non-finite value appeared.
+    #[error("non-finite {quantity} in element {element} at x = {x} m")]
+    NonFinite {
+        /// 0-based element index.
+        element: usize,
+        /// Material coordinate (m).
+        x: f64,
+        /// Which quantity.
+        quantity: &'static str,
+    },
+    /// Invalid set-up.
+    #[error("{0}")]
+    Setup(String),
+}
+
+/// State of the section at one bending point after an evaluation (for output and the
+/// energy bookkeeping).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PointState {
+    /// Material coordinate (m).
+    pub x: f64,
+    /// Assumed axial strain.
+    pub eps: f64,
+    /// Curvature `kappa_z` (1/m): the signed curvature of a planar element.
+    pub kappa: f64,
+    /// Curvature `kappa_y` (1/m): zero for a planar element.
+    pub kappa_y: f64,
+    /// Bending moment (N m).
+    pub moment: f64,
+    /// d(stored energy)/d eps at fixed curvature (J/m), see `SectionResponse::energy_strain`.
+    pub energy_strain: f64,
+    /// Quadrature weight (m).
+    pub weight: f64,
+    /// Number of slipping wires.
+    pub slipping: usize,
+}
+
+/// Sums of an evaluation of the internal forces.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Evaluation {
+    /// Stored elastic energy (J).
+    pub energy: f64,
+    /// Work dissipated by slip from the committed state (J; hysteretic law).
+    pub slip_work: f64,
+    /// Slipping wire-points.
+    pub slipping: usize,
+}
+
+/// A discretized strand beam (planar or spatial elements).
+#[derive(Debug, Clone)]
+pub struct Beam {
+    spec: BeamSpec,
+    law: SectionLaw,
+    length: f64,
+    element_length: f64,
+    /// Free-coordinate index of each global coordinate.
+    free_index: Vec<Option<usize>>,
+    n_free: usize,
+    /// The global coordinates of the free ones when they are contiguous (no pinned end at
+    /// x = L, whose fixed position sits between free coordinates).
+    free_span: Option<std::ops::Range<usize>>,
+    rules: Vec<ElementRule>,
+    q_ref: Vec<f64>,
+    gravity_force: Vec<f64>,
+    mass: BandMatrix,
+    vector_mass: VectorMass,
+    wires: usize,
+    /// Coordinates per node.
+    nd: usize,
+    /// Section frame of the straight strand (spatial element).
+    frame: Option<SectionFrame>,
+}
+
+/// Gauss points of the reduced axial quadrature.
+pub const AXIAL_POINTS: usize = 2;
+
+/// Weight of the hourglass stabilization, relative to EA l. Two axial points leave one
+/// zero-energy mode per beam: a uniform change of the nodal slope lengths makes a strain
+/// shaped like the Legendre P2 that vanishes at both points (singular statics unless a clamp
+/// fixes a slope). A penalty `1/2 HOURGLASS EA l (eps(l/2) - eps_bar(l/2))^2` on the
+/// midpoint strain's departure from the assumed field gives it stiffness; it is small enough
+/// not to bring membrane locking back (`tests/statics.rs`).
+pub const HOURGLASS: f64 = 1e-6;
+
+impl Beam {
+    /// Builds the beam of `spec` with section law `law` (its strand gives the length).
+    pub fn new(spec: BeamSpec, law: SectionLaw) -> Result<Beam, BeamError> {
+        let n = spec.elements;
+        if n == 0 {
+            return Err(BeamError::Setup("a beam needs at least one element".into()));
+        }
+        let length = law.strand().length();
+        let l = length / n as f64;
+        let d = Vector3::from(spec.direction);
+        if (d.norm() - 1.0).abs() > 1e-12 {
+            return Err(BeamError::Setup("direction must be a unit vector".into()));
+        }
+        let (nd, frame) = match spec.element {
+            ElementKind::Planar => {
+                if d.z != 0.0 || spec.gravity[2] != 0.0 {
+                    return Err(BeamError::Setup(
+                        "a planar beam needs its direction and gravity in the XY plane".into(),
+                    ));
+                }
+                (4, None)
+            }
+            ElementKind::Spatial => (
+                6,
+                Some(
+                    SectionFrame::along(d)
+                        .map_err(|source| BeamError::Kinematics { element: 0, source })?,
+                ),
+            ),
+        };
+        let dim = nd / 2;
+        let n_glob = (n + 1) * nd;
+        let mut q_ref = vec![0.0; n_glob];
+        for j in 0..=n {
+            let x = j as f64 * l;
+            for c in 0..dim {
+                q_ref[j * nd + c] = x * d[c];
+                q_ref[j * nd + dim + c] = d[c];
+            }
+        }
+        let (free_index, n_free) = supports::free_coordinates(&spec, nd);
+        let wires = law.sliders();
+        let rules = (0..n)
+            .map(|e| quadrature::element_rule(&law, &spec, e, l))
+            .collect::<Result<Vec<_>, _>>()?;
+        let mass = inertia::free_mass(&spec, nd, l, &free_index, n_free);
+        let gravity_force = loads::gravity_force(&spec, nd, l);
+        let vector_mass = VectorMass::from_band(&mass, dim);
+        Ok(Beam {
+            spec,
+            law,
+            length,
+            element_length: l,
+            vector_mass,
+            free_span: supports::free_span(&free_index, n_free),
+            free_index,
+            n_free,
+            rules,
+            q_ref,
+            gravity_force,
+            mass,
+            wires,
+            nd,
+            frame,
+        })
+    }
+
+    /// The spec the beam was built from.
+    pub fn spec(&self) -> &BeamSpec {
+        &self.spec
+    }
+    /// The section law.
+    pub fn law(&self) -> &SectionLaw {
+        &self.law
+    }
+    /// Strand length (m).
+    pub fn length(&self) -> f64 {
+        self.length
+    }
+    /// Element length (m).
+    pub fn element_length(&self) -> f64 {
+        self.element_length
+    }
+    /// Number of global coordinates.
+    pub fn coords(&self) -> usize {
+        self.q_ref.len()
+    }
+    /// Number of free coordinates (degrees of freedom).
+    pub fn dofs(&self) -> usize {
+        self.n_free
+    }
+    /// The global coordinates of the free ones, `g0..g0 + dofs()`, when they are contiguous:
+    /// free index `i` is then global coordinate `g0 + i`.
+    pub fn free_span(&self) -> Option<std::ops::Range<usize>> {
+        self.free_span.clone()
+    }
+    /// Free index of global coordinate `g`, if free.
+    pub fn free_index(&self, g: usize) -> Option<usize> {
+        self.free_index[g]
+    }
+    /// The straight reference configuration.
+    pub fn reference(&self) -> &[f64] {
+        &self.q_ref
+    }
+    /// Generalized gravity force, all coordinates (N).
+    pub fn gravity_force(&self) -> &[f64] {
+        &self.gravity_force
+    }
+    /// Mass matrix of the free coordinates (kg).
+    pub fn mass(&self) -> &BandMatrix {
+        &self.mass
+    }
+    /// The same mass matrix in Kronecker form, for fast products.
+    pub fn vector_mass(&self) -> &VectorMass {
+        &self.vector_mass
+    }
+    /// Half-bandwidth of the free system.
+    pub fn bandwidth(&self) -> usize {
+        2 * self.nd - 1
+    }
+    /// Coordinates per node: 4 (planar) or 6 (spatial).
+    pub fn node_coords(&self) -> usize {
+        self.nd
+    }
+    /// Consistent mass matrix of one element (eq. (44)).
+    pub fn element_mass(&self) -> DMatrix<f64> {
+        inertia::element_mass(
+            self.spec.element,
+            self.spec.mass_per_length,
+            self.element_length,
+        )
+    }
+    /// Bending points per element.
+    pub fn bending_points(&self) -> usize {
+        self.rules[0].bend.len()
+    }
+    /// Total bending points.
+    pub fn points(&self) -> usize {
+        self.rules.iter().map(|r| r.bend.len()).sum()
+    }
+    /// Slip state values per bending point: one per wire for a law with state, else none.
+    pub(crate) fn state_per_point(&self) -> usize {
+        if self.law.kind().has_state() {
+            self.wires
+        } else {
+            0
+        }
+    }
+    /// Length of the law's state vector for the whole beam.
+    pub fn state_len(&self) -> usize {
+        self.points() * self.state_per_point()
+    }
+
+    pub(crate) fn planar_coords(&self, q: &[f64], e: usize) -> PlanarCoords {
+        PlanarCoords::from_column_slice(&q[e * 4..e * 4 + 8])
+    }
+
+    pub(crate) fn spatial_coords(&self, q: &[f64], e: usize) -> SpatialCoords {
+        SpatialCoords::from_column_slice(&q[e * 6..e * 6 + 12])
+    }
+}

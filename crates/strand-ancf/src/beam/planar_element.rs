@@ -1,0 +1,341 @@
+//! Forces and tangent of one planar element (eq. (28)): axial points, hourglass
+//! stabilization and bending points with the planar section law.
+
+use nalgebra::{Vector2, Vector4};
+use strand_core::PlanarResponse;
+
+use super::{
+    AXIAL_POINTS, Beam, BeamError, BendPoint, ElementRule, Evaluation, HOURGLASS, PointState,
+};
+use crate::error::check_stretch;
+use crate::planar::{self, PlanarAxial, PlanarCoords, PlanarMatrix, PlanarPoint, PlanarVector};
+use crate::scatter;
+
+impl Beam {
+    /// Forces (and tangent) of one planar element. The symmetric part of the tangent is built
+    /// on and below the diagonal and mirrored; the coupling `d M / d eps` (the only
+    /// non-symmetric term) is added after.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn element_planar(
+        &self,
+        e: usize,
+        rule: &ElementRule,
+        qe: &PlanarCoords,
+        slip: &[f64],
+        trial: &mut [f64],
+        mut tangent: Option<&mut PlanarMatrix>,
+        mut points: Option<&mut [PointState]>,
+    ) -> Result<(PlanarVector, Evaluation, bool), BeamError> {
+        let kin = |source| BeamError::Kinematics { element: e, source };
+        let ea = self.law.axial_stiffness();
+        let mut f = PlanarVector::zeros();
+        if let Some(t) = tangent.as_deref_mut() {
+            t.fill(0.0);
+        }
+        let mut ev = Evaluation::default();
+        // The non-symmetric part of the tangent, if any, as the element-size factors of its
+        // rank-one terms per axial point (see the bending points).
+        let mut coupling = [PlanarVector::zeros(); AXIAL_POINTS];
+        let mut coupled = false;
+        // Axial points: reduced quadrature.
+        let mut eps_a = [0.0; AXIAL_POINTS];
+        let mut eps_q = [PlanarVector::zeros(); AXIAL_POINTS];
+        let mut axial = [PlanarAxial {
+            eps: 0.0,
+            tangent: Vector2::zeros(),
+            stretch: 1.0,
+        }; AXIAL_POINTS];
+        for (j, ap) in rule.axial.iter().enumerate() {
+            let a = PlanarPoint::at(qe, &ap.row).axial().map_err(kin)?;
+            axial[j] = a;
+            eps_a[j] = a.eps;
+            let n = ea * a.eps;
+            let ge = Vector4::new(a.tangent.x, a.tangent.y, 0.0, 0.0);
+            planar::add_gradient(&mut f, ap.weight, &ap.row, &(ge * n));
+            eps_q[j] = planar::scatter_gradient(&ap.row, &ge);
+            if let Some(t) = tangent.as_deref_mut() {
+                // N eps_yy + EA eps_y eps_y^T: only the r' block.
+                let h = a.hessian() * n + a.tangent * a.tangent.transpose() * ea;
+                planar::add_hessian_aa_lower(t, ap.weight, &ap.row, &h);
+            }
+            ev.energy += ap.weight * 0.5 * ea * eps_a[j] * eps_a[j];
+        }
+        // Hourglass stabilization at the midpoint (see [`HOURGLASS`]); the assumed field
+        // there is the mean of the axial points.
+        {
+            let c = HOURGLASS * ea * self.element_length;
+            let a = PlanarPoint::at(qe, &rule.mid).axial().map_err(kin)?;
+            let mean = 1.0 / AXIAL_POINTS as f64;
+            let d = a.eps - mean * eps_a.iter().sum::<f64>();
+            let ge = Vector4::new(a.tangent.x, a.tangent.y, 0.0, 0.0);
+            let mut g = planar::scatter_gradient(&rule.mid, &ge);
+            for eq in &eps_q {
+                g -= eq * mean;
+            }
+            f += g * (c * d);
+            if let Some(t) = tangent.as_deref_mut() {
+                t.ger(c, &g, &g, 1.0);
+                planar::add_hessian_aa_lower(t, c * d, &rule.mid, &a.hessian());
+                for (ap, aj) in rule.axial.iter().zip(&axial) {
+                    planar::add_hessian_aa_lower(t, -c * d * mean, &ap.row, &aj.hessian());
+                }
+            }
+            ev.energy += 0.5 * c * d * d;
+        }
+        // Bending points.
+        let ws = self.state_per_point();
+        for (i, bp) in rule.bend.iter().enumerate() {
+            let eps: f64 = (0..AXIAL_POINTS).map(|j| bp.interp[j] * eps_a[j]).sum();
+            let pt = PlanarPoint::at(qe, &bp.qp.row);
+            // Empty for a law without state (ws = 0).
+            let (sl, tr) = (
+                &slip[i * ws..(i + 1) * ws],
+                &mut trial[i * ws..(i + 1) * ws],
+            );
+            let w = bp.qp.weight;
+            let kappa;
+            let r;
+            if let Some(t) = tangent.as_deref_mut() {
+                let b2 = pt.bending_second().map_err(kin)?;
+                kappa = b2.kappa;
+                r = self.law.planar(&bp.station, eps, kappa, sl, tr);
+                planar::add_gradient(&mut f, w, &bp.qp.row, &(b2.grad * r.moment));
+                // M kappa_yy + M_kappa kappa_y kappa_y^T (kappa_yy has no r'' r'' block).
+                let mut h = b2.grad * b2.grad.transpose() * r.moment_curvature;
+                for j in 0..2 {
+                    for i in 0..2 {
+                        h[(i, j)] += b2.hess_aa[(i, j)] * r.moment;
+                        h[(i, 2 + j)] += b2.hess_ab[(i, j)] * r.moment;
+                        h[(2 + j, i)] += b2.hess_ab[(i, j)] * r.moment;
+                    }
+                }
+                planar::add_hessian_lower(t, w, &bp.qp.row, &h);
+                if r.moment_strain != 0.0 {
+                    // d M / d eps_bar couples the curvature here to the axial points:
+                    // w M_eps kappa_q eps_bar_q^T with eps_bar_q = sum_j interp_j eps_q[j].
+                    // Summed per axial point j over the bending points, then one rank-one
+                    // update per axial point for the element.
+                    let c = w * r.moment_strain;
+                    for j in 0..AXIAL_POINTS {
+                        planar::add_gradient(
+                            &mut coupling[j],
+                            c * bp.interp[j],
+                            &bp.qp.row,
+                            &b2.grad,
+                        );
+                    }
+                    coupled = true;
+                }
+            } else {
+                let (k, grad) = pt.bending_first().map_err(kin)?;
+                kappa = k;
+                r = self.law.planar(&bp.station, eps, kappa, sl, tr);
+                planar::add_gradient(&mut f, w, &bp.qp.row, &(grad * r.moment));
+            }
+            let point = points.as_deref_mut().map(|p| &mut p[i]);
+            book_planar_point(e, bp, eps, kappa, ea, &r, &mut ev, point)?;
+        }
+        if let Some(t) = tangent {
+            planar::mirror_lower(t);
+            if coupled {
+                for j in 0..AXIAL_POINTS {
+                    t.ger(1.0, &coupling[j], &eps_q[j], 1.0);
+                }
+            }
+        }
+        self.check_force(e, f.as_slice())?;
+        Ok((f, ev, !coupled))
+    }
+
+    /// Forces of one planar element without the tangent: the quantities of
+    /// [`Beam::element_planar`] with only what the forces need. Per point only `r'` (axial
+    /// points) or `r'` and `r''` (bending points) are formed, and the hourglass term's strain
+    /// gradients are folded into the scatter of each point's own force, so every point is
+    /// mapped to the element coordinates once. This is the evaluation of every Newton
+    /// iteration that keeps its matrix and of every explicit step.
+    pub(super) fn planar_forces(
+        &self,
+        e: usize,
+        rule: &ElementRule,
+        qe: &PlanarCoords,
+        slip: &[f64],
+        trial: &mut [f64],
+        mut points: Option<&mut [PointState]>,
+    ) -> Result<(PlanarVector, Evaluation), BeamError> {
+        let kin = |source| BeamError::Kinematics { element: e, source };
+        let q = qe.as_slice();
+        let ea = self.law.axial_stiffness();
+        let mut f = [0.0; 8];
+        let mut ev = Evaluation::default();
+        // Axial points: strain and unit tangent from r' alone.
+        let mut eps_a = [0.0; AXIAL_POINTS];
+        let mut t_a = [[0.0; 2]; AXIAL_POINTS];
+        for (j, ap) in rule.axial.iter().enumerate() {
+            let dr = scatter::combine::<2>(&ap.row.ds, q);
+            let n = check_stretch((dr[0] * dr[0] + dr[1] * dr[1]).sqrt()).map_err(kin)?;
+            eps_a[j] = n - 1.0;
+            t_a[j] = [dr[0] / n, dr[1] / n];
+            ev.energy += ap.weight * 0.5 * ea * eps_a[j] * eps_a[j];
+        }
+        // Hourglass stabilization at the midpoint (see [`HOURGLASS`]): the force
+        // `c d (d eps_mid/dq - mean sum_j d eps_j/dq)`.
+        let c = HOURGLASS * ea * self.element_length;
+        let mean = 1.0 / AXIAL_POINTS as f64;
+        {
+            let dr = scatter::combine::<2>(&rule.mid.ds, q);
+            let n = check_stretch((dr[0] * dr[0] + dr[1] * dr[1]).sqrt()).map_err(kin)?;
+            let d = (n - 1.0) - mean * eps_a.iter().sum::<f64>();
+            let cd = c * d;
+            add_slope_gradient(&mut f, cd / n, &rule.mid.ds, &dr);
+            for (j, ap) in rule.axial.iter().enumerate() {
+                // Axial force N = EA eps along the tangent, minus the hourglass share.
+                let a = ap.weight * ea * eps_a[j] - cd * mean;
+                add_slope_gradient(&mut f, a, &ap.row.ds, &t_a[j]);
+            }
+            ev.energy += 0.5 * c * d * d;
+        }
+        let ws = self.state_per_point();
+        let linear = self.law.is_linear();
+        // The kinematics of the bending points, LANES at a time: the square roots and
+        // divisions of independent points side by side (packed, with the same rounding as
+        // one by one), not each waiting on the last.
+        let mut kin_pts = [BendKinematics::default(); LANES];
+        for (i, bp) in rule.bend.iter().enumerate() {
+            let lane = i % LANES;
+            if lane == 0 {
+                let chunk = &rule.bend[i..(i + LANES).min(rule.bend.len())];
+                bend_kinematics(chunk, q, &mut kin_pts);
+                for k in &kin_pts[..chunk.len()] {
+                    check_stretch(k.n).map_err(kin)?;
+                }
+            }
+            let BendKinematics { kappa, ka, kb, .. } = kin_pts[lane];
+            let eps: f64 = (0..AXIAL_POINTS).map(|j| bp.interp[j] * eps_a[j]).sum();
+            // Empty for a law without state (ws = 0).
+            let (sl, tr) = (
+                &slip[i * ws..(i + 1) * ws],
+                &mut trial[i * ws..(i + 1) * ws],
+            );
+            let r = if linear {
+                self.law.planar_linear(eps, kappa)
+            } else {
+                self.law.planar(&bp.station, eps, kappa, sl, tr)
+            };
+            let point = points.as_deref_mut().map(|p| &mut p[i]);
+            book_planar_point(e, bp, eps, kappa, ea, &r, &mut ev, point)?;
+            let wm = bp.qp.weight * r.moment;
+            let row = &bp.qp.row;
+            for k in 0..4 {
+                let (c1, c2) = (wm * row.ds[k], wm * row.dds[k]);
+                f[2 * k] += c1 * ka[0] + c2 * kb[0];
+                f[2 * k + 1] += c1 * ka[1] + c2 * kb[1];
+            }
+        }
+        self.check_force(e, f.as_slice())?;
+        Ok((PlanarVector::from(f), ev))
+    }
+}
+
+/// Books the section response `r` of planar bending point `bp` (element `e`): checks that
+/// it is finite, adds its stored energy beyond the axial part, slip work and slipping wires to
+/// `ev`, and records its state in `point`, if given. Shared by both planar element paths.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn book_planar_point(
+    e: usize,
+    bp: &BendPoint,
+    eps: f64,
+    kappa: f64,
+    ea: f64,
+    r: &PlanarResponse,
+    ev: &mut Evaluation,
+    point: Option<&mut PointState>,
+) -> Result<(), BeamError> {
+    if !(r.moment.is_finite() && r.moment_curvature.is_finite()) {
+        return Err(BeamError::NonFinite {
+            element: e,
+            x: bp.station.x,
+            quantity: "bending moment",
+        });
+    }
+    let w = bp.qp.weight;
+    ev.energy += w * (r.energy - 0.5 * ea * eps * eps);
+    ev.slip_work += w * r.slip_work;
+    ev.slipping += r.slipping;
+    if let Some(p) = point {
+        *p = PointState {
+            x: bp.station.x,
+            eps,
+            kappa,
+            kappa_y: 0.0,
+            moment: r.moment,
+            energy_strain: r.energy_strain,
+            weight: w,
+            slipping: r.slipping,
+        };
+    }
+    Ok(())
+}
+
+/// Bending points evaluated side by side in [`Beam::planar_forces`].
+const LANES: usize = 4;
+
+/// Curvature and its gradient at a bending point (as `PlanarPoint::bending_first`).
+#[derive(Debug, Clone, Copy, Default)]
+struct BendKinematics {
+    /// `|r'|`.
+    n: f64,
+    /// `(r' x r'')_z / |r'|^2` (1/m).
+    kappa: f64,
+    /// `d kappa / d r'`.
+    ka: [f64; 2],
+    /// `d kappa / d r''`.
+    kb: [f64; 2],
+}
+
+/// [`BendKinematics`] of up to [`LANES`] bending points with element coordinates `q`, each
+/// step over all points at once; lanes past `points` are left with `n = 1`.
+#[inline(always)]
+fn bend_kinematics(points: &[BendPoint], q: &[f64], out: &mut [BendKinematics; LANES]) {
+    let (mut a, mut b) = ([[0.0; 2]; LANES], [[0.0; 2]; LANES]);
+    let mut n = [1.0; LANES];
+    for (l, bp) in points.iter().enumerate() {
+        a[l] = scatter::combine::<2>(&bp.qp.row.ds, q);
+        b[l] = scatter::combine::<2>(&bp.qp.row.dds, q);
+        n[l] = a[l][0] * a[l][0] + a[l][1] * a[l][1];
+    }
+    for x in &mut n {
+        *x = x.sqrt();
+    }
+    let mut g = [0.0; LANES];
+    let mut ga = [0.0; LANES];
+    let mut t = [[0.0; 2]; LANES];
+    for l in 0..LANES {
+        g[l] = 1.0 / (n[l] * n[l]);
+        ga[l] = -2.0 * g[l] / n[l];
+        t[l] = [a[l][0] / n[l], a[l][1] / n[l]];
+    }
+    for l in 0..LANES {
+        let cr = a[l][0] * b[l][1] - a[l][1] * b[l][0];
+        out[l] = BendKinematics {
+            n: n[l],
+            kappa: cr * g[l],
+            ka: [
+                b[l][1] * g[l] + t[l][0] * ga[l] * cr,
+                -b[l][0] * g[l] + t[l][1] * ga[l] * cr,
+            ],
+            kb: [-a[l][1] * g[l], a[l][0] * g[l]],
+        };
+    }
+}
+
+/// `f += a S_k' v` for the four nodal slope blocks: the element force of a local force `a v`
+/// acting on `r'` alone.
+#[inline(always)]
+fn add_slope_gradient(f: &mut [f64; 8], a: f64, ds: &[f64; 4], v: &[f64; 2]) {
+    for k in 0..4 {
+        let c = a * ds[k];
+        f[2 * k] += c * v[0];
+        f[2 * k + 1] += c * v[1];
+    }
+}

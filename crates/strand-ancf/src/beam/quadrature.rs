@@ -1,0 +1,82 @@
+//! Integration points of an element: the reduced axial rule, the hourglass point and the
+//! bending points (the pitch rule or the scene's Gauss rule), with the section law's stations.
+
+use strand_core::{SectionLaw, Station};
+
+use super::{AXIAL_POINTS, BeamError, BeamSpec};
+use crate::shape::{QuadraturePoint, ShapeRow, element_quadrature, gauss_legendre};
+
+/// One bending integration point.
+#[derive(Debug, Clone)]
+pub(crate) struct BendPoint {
+    pub qp: QuadraturePoint,
+    pub station: Station,
+    /// Lagrange weights of the axial points at this point (assumed strain).
+    pub interp: [f64; AXIAL_POINTS],
+}
+
+/// Quadrature of one element (all elements have the same length but different stations).
+#[derive(Debug, Clone)]
+pub(crate) struct ElementRule {
+    pub axial: Vec<QuadraturePoint>,
+    /// Shape row at the element midpoint (hourglass stabilization).
+    pub mid: ShapeRow,
+    pub bend: Vec<BendPoint>,
+}
+
+/// Bending integration points of element `e`: the pitch rule or the scene's Gauss rule.
+pub(super) fn element_rule(
+    law: &SectionLaw,
+    spec: &BeamSpec,
+    e: usize,
+    l: f64,
+) -> Result<ElementRule, BeamError> {
+    let setup = |source| BeamError::Kinematics { element: e, source };
+    let axial = element_quadrature(l, AXIAL_POINTS).map_err(setup)?;
+    let x0 = e as f64 * l;
+    let mut pts: Vec<(f64, f64)> = Vec::new();
+    match (spec.bending_points, law.strand().layer()) {
+        (Some(n), _) => {
+            let rule = gauss_legendre(n).map_err(setup)?;
+            pts.extend(rule.on_interval(0.0, l));
+        }
+        (None, Some(layer)) if law.sliders() > 0 => {
+            let sub = ((4.0 * l / layer.pitch).ceil() as usize).max(1);
+            let rule = gauss_legendre(3).map_err(setup)?;
+            let h = l / sub as f64;
+            for k in 0..sub {
+                pts.extend(rule.on_interval(k as f64 * h, (k + 1) as f64 * h));
+            }
+        }
+        _ => {
+            let rule = gauss_legendre(4).map_err(setup)?;
+            pts.extend(rule.on_interval(0.0, l));
+        }
+    }
+    let xa: Vec<f64> = axial.iter().map(|a| a.row.x).collect();
+    let bend = pts
+        .into_iter()
+        .map(|(x, weight)| {
+            // Lagrange polynomial through the axial points.
+            let interp = std::array::from_fn(|j| {
+                (0..AXIAL_POINTS)
+                    .filter(|&k| k != j)
+                    .map(|k| (x - xa[k]) / (xa[j] - xa[k]))
+                    .product()
+            });
+            BendPoint {
+                qp: QuadraturePoint {
+                    weight,
+                    row: ShapeRow::new(x, l),
+                },
+                station: law.station(x0 + x),
+                interp,
+            }
+        })
+        .collect();
+    Ok(ElementRule {
+        axial,
+        mid: ShapeRow::new(0.5 * l, l),
+        bend,
+    })
+}
