@@ -12,7 +12,7 @@ use strand_core::{SectionLaw, Strand};
 use strand_fine::{BendingPoint, BendingTest, ContactOptions, StaticOptions};
 
 use crate::output::Csv;
-use crate::run::{RunError, io_err};
+use crate::run::record::{RunError, io_err};
 use crate::scene::Scene;
 
 /// Controls of a virtual bending test.

@@ -7,7 +7,6 @@ mod bending;
 pub mod format;
 pub mod output;
 mod run;
-mod run_fine;
 mod scene;
 
 pub use bending::{BendingOptions, BendingSummary, run_bending};

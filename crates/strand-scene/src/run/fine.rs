@@ -27,8 +27,8 @@ use strand_fine::{
     ContactOptions, ContactState, Discretisation, FineModel, Integrator, ModelState, WireLoads,
 };
 
+use super::record::{RunError, RunOptions, RunSummary, finish, io_err};
 use crate::output::{Csv, FrameFiles, number};
-use crate::run::{RunError, RunOptions, RunSummary, finish, io_err};
 use crate::scene::{Analysis, End, IntegratorKind, Scene, SupportKind};
 
 /// Safety factor on the explicit stable step of the fine model. (With the step at 0.9 of
