@@ -5,6 +5,7 @@ use std::process::Command;
 use anyhow::{Context, bail};
 use clap::{Parser, Subcommand};
 
+mod bench_peers;
 mod hard;
 mod paper;
 mod pareto;
@@ -36,6 +37,10 @@ enum Task {
     /// Speed against error of the models on a static and a dynamic scene: table, log-log plot
     /// with the Pareto front, speed-up at equal error; target/pareto/.
     Pareto(pareto::ParetoArgs),
+    /// The section-3 pendulum in strand and in Exudyn (pip install exudyn), timed side by side
+    /// in interleaved runs, with the trajectories checked against each other;
+    /// target/bench-peers/.
+    BenchPeers(bench_peers::BenchPeersArgs),
 }
 
 fn main() -> anyhow::Result<()> {
@@ -45,6 +50,7 @@ fn main() -> anyhow::Result<()> {
         Task::Hard(args) => hard_and_exit(&args),
         Task::Paper(args) => paper::run(&args),
         Task::Pareto(args) => pareto::run(&args),
+        Task::BenchPeers(args) => bench_peers::run(&args),
     }
 }
 
