@@ -167,7 +167,8 @@ def study(law, a, progs, log):
             "settings": {
                 k: first[k]
                 for k in first
-                if k.startswith("newton_") or k in ("spectral_radius", "modified_newton")
+                if (k.startswith("newton_") and k != "newton_iterations")
+                or k in ("spectral_radius", "modified_newton", "step_halving")
             },
             "balance_error": first.get("balance_error"),
             # Same program and mesh, the reference step: the step and Newton error.

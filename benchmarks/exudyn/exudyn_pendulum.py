@@ -206,6 +206,7 @@ def main():
         # One sensor sample at the start and one after every step.
         "steps": len(position) - 1,
         "modified_newton": bool(ti.newton.useModifiedNewton),
+        "step_halving": bool(ti.adaptiveStep),
         "newton_iterations": int(it.newtonStepsCount),
         "jacobians": int(it.newtonJacobiCount),
         "setup_s": setup,

@@ -141,6 +141,8 @@ fn run() -> Result<(), String> {
         "step": args.step,
         "spectral_radius": args.spectral_radius,
         "newton_increment": opts.increment,
+        "modified_newton": true,
+        "step_halving": true,
         "steps": summary.steps,
         "newton_iterations": summary.newton_iterations,
         "jacobians": summary.factorizations,
