@@ -53,9 +53,8 @@ pub fn run(args: &BenchPeersArgs) -> anyhow::Result<()> {
             eprintln!(
                 "bench-peers: `{python}` cannot import exudyn. Install it with\n\n    \
                  {python} -m pip install -r benchmarks/exudyn/requirements.txt\n\n\
-                 ({EXUDYN}, from PyPI; wheels for CPython 3.8-3.13 on Linux, Windows and \
-                 macOS), or name another interpreter with --python or $PYTHON. Nothing was \
-                 timed."
+                 ({EXUDYN}, from PyPI), or name another interpreter with --python or \
+                 $PYTHON. Nothing was timed."
             );
             std::process::exit(2);
         }
