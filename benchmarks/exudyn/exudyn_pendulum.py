@@ -2,7 +2,8 @@
 `cargo xtask bench-peers`; `peer_pendulum` is the strand side and prints the same keys).
 
     python3 exudyn_pendulum.py CONSTANTS.json --law constant|continuous --step H
-        [--spectral-radius R] [--relative-tolerance TOL] [--elements N] [--scale-ei F]
+        [--spectral-radius R] [--relative-tolerance TOL] [--absolute-tolerance TOL]
+        [--full-newton] [--elements N] [--scale-ei F]
 
 CONSTANTS.json is written by bench_peers.py from `strand section` and the scene
 (`strand_law.section_constants`). The model: N ObjectANCFCable2D elements (default
@@ -55,7 +56,7 @@ def build(c, law, elements, scale_ei):
         ei, ea, uf = c["EI_traditional"], c["EA_traditional"], 0
     else:
         ei, ea = c["K_min"], c["EA"]
-        uf = continuous_user_function(c, elements, l, scale_ei)
+        uf = ContinuousMoment(c, l, scale_ei)
     start_of = {}
     for e in range(elements):
         obj = mbs.AddObject(
@@ -72,7 +73,7 @@ def build(c, law, elements, scale_ei):
         start_of[int(obj)] = e * l
         marker = mbs.AddMarker(MarkerBodyMass(bodyNumber=obj))
         mbs.AddLoad(LoadMassProportional(markerNumber=marker, loadVector=c["gravity"]))
-    if uf:
+    if law != "constant":
         uf.start_of.update(start_of)
     held = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ground, coordinate=0))
     for coordinate in (0, 1):
@@ -114,10 +115,6 @@ class ContinuousMoment:
             self.stations[key] = wires
         m = strand_law.continuous_moment(self.c, wires, strain - strain_ref, curvature - curvature_ref)
         return self.scale * m
-
-
-def continuous_user_function(c, elements, l, scale):
-    return ContinuousMoment(c, l, scale)
 
 
 def on_grid(position, velocity, interval, duration):
