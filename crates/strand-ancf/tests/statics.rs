@@ -188,7 +188,7 @@ fn paper_section3_tension_stiffness_and_sag() {
     // 0.02 N, so the friction moment is small but not zero there).
     let p0 = &sol.points[0];
     let root = secant(p0);
-    let kmin = s.min_bending_stiffness();
+    let kmin = law.base_bending_stiffness();
     assert!(
         (root - kmin).abs() < 1e-2 * kmin,
         "root stiffness {root} vs K_min {kmin}"
@@ -201,7 +201,7 @@ fn paper_section3_tension_stiffness_and_sag() {
     // Toward the tip the wires stick: the stiffness rises to the all-stick K_max (six wires:
     // K_min + sum K_stick is K_max at every station). At the very end the tension, and with it
     // the friction, vanishes again, so look at the largest value over the last 20 %.
-    let kmax = s.max_bending_stiffness();
+    let kmax = s.max_bending_stiffness(law.options().base_stiffness);
     let top = sol
         .points
         .iter()

@@ -42,7 +42,7 @@ enum Command {
     /// Print the strand's derived quantities and, given strain and curvature, the section's
     /// moment, stiffness and per-wire stick/slip table (SPEC 6).
     Section {
-        /// Scene file (only its `strand` and `law` are used).
+        /// Scene file (only its `strand`, `law` and `section` are used).
         scene: PathBuf,
         /// Axial strain eps (-).
         #[arg(long, allow_negative_numbers = true)]
@@ -315,9 +315,9 @@ fn section(
         "--at must lie on the strand, in [0, {}] m, got {at}",
         strand.length()
     );
-    let summary = StrandSummary::new(strand);
+    let summary = StrandSummary::new(strand, &scene.section);
     let point = match (strain, curvature) {
-        (Some(e), Some(k)) => Some(SectionPoint::new(strand, law, e, k, at)),
+        (Some(e), Some(k)) => Some(SectionPoint::new(strand, law, &scene.section, e, k, at)),
         (None, None) => None,
         _ => anyhow::bail!("give both --strain and --curvature, or neither"),
     };
@@ -352,7 +352,7 @@ fn print_summary(scene: &Scene, s: &StrandSummary) {
         strand.length(),
         strand.friction()
     );
-    let rows: [(&str, String); 11] = [
+    let rows: [(&str, String); 13] = [
         ("helix radius R_w", opt(s.r_w, "m")),
         ("pitch P", opt(s.pitch, "m")),
         ("lay angle", opt(s.lay_angle_deg, "deg")),
@@ -361,8 +361,16 @@ fn print_summary(scene: &Scene, s: &StrandSummary) {
         ("mass per length", format!("{:.6e} kg/m", s.mass_per_length)),
         ("axial stiffness EA_eq", format!("{:.6e} N", s.ea)),
         (
+            "wire bending stiffness in K_min",
+            format!("{} (section.base_stiffness)", s.base_stiffness),
+        ),
+        (
             "bending stiffness K_min (all slip)",
-            format!("{:.6e} N m^2", s.k_min),
+            format!("{:.6e} N m^2 (used)", s.k_min),
+        ),
+        (
+            "K_min of the paper (eta = cos^3)",
+            format!("{:.6e} N m^2", s.k_min_paper),
         ),
         (
             "bending stiffness K_max (all stick)",

@@ -102,3 +102,80 @@ fn bad_scene_names_the_field() {
     ]);
     assert!(!out.status.success());
 }
+
+/// Writes `validation/paper-fig7-g8.json` with its `section` object replaced by `section`
+/// (JSON text, or nothing when empty) to a temporary file.
+fn fig7_with_section(tag: &str, section: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("strand-cli-section-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../validation/paper-fig7-g8.json"
+        ))
+        .unwrap(),
+    )
+    .unwrap();
+    let obj = v.as_object_mut().unwrap();
+    obj.remove("section");
+    if !section.is_empty() {
+        obj.insert("section".into(), serde_json::from_str(section).unwrap());
+    }
+    let p = dir.join(format!("{tag}.json"));
+    std::fs::write(&p, serde_json::to_string(&v).unwrap()).unwrap();
+    p
+}
+
+/// Without `section`, K_min is Costello's (core E I plus six wires E I cos(alpha) 2 / (2 + nu
+/// sin^2 alpha), written out here) and the paper's cos^3 value is shown beside it.
+#[test]
+fn section_shows_the_base_stiffness_and_both_values() {
+    let p = fig7_with_section("default", "");
+    let out = strand(&["section", p.to_str().unwrap(), "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let (e, a) = (2.0e8, 20f64.to_radians());
+    let i = |d: f64| std::f64::consts::PI * d.powi(4) / 64.0;
+    let costello = e * i(3e-3) + 6.0 * e * i(2e-3) * a.cos() * 2.0 / (2.0 + 0.3 * a.sin().powi(2));
+    assert_eq!(v["base_stiffness"], "costello");
+    let k_min = v["K_min"].as_f64().unwrap();
+    assert!(
+        (k_min - costello).abs() < 1e-12 * costello,
+        "{k_min} vs {costello}"
+    );
+    let paper = v["K_min_paper"].as_f64().unwrap();
+    assert!((paper - 1.57725e-3).abs() < 5e-6 * 1.57725e-3, "{paper}");
+    // The text table names the form and prints both values.
+    let out = strand(&["section", p.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("costello (section.base_stiffness)"), "{text}");
+    assert!(
+        text.contains(&format!("{k_min:.6e} N m^2 (used)")),
+        "{text}"
+    );
+    assert!(text.contains(&format!("{paper:.6e}")), "{text}");
+    // A scene naming the paper's form uses it.
+    let p = fig7_with_section("foti", r#"{"base_stiffness": "foti"}"#);
+    let out = strand(&["section", p.to_str().unwrap(), "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["base_stiffness"], "foti");
+    assert!(v["K_min"].as_f64().unwrap() > costello);
+    // Unknown forms and keys are rejected naming the field.
+    for (section, field) in [
+        (
+            r#"{"base_stiffness": "cos3"}"#,
+            "section.base_stiffness: unknown base stiffness",
+        ),
+        (r#"{"bonded": 1}"#, "section"),
+    ] {
+        let p = fig7_with_section("bad", section);
+        let out = strand(&["section", p.to_str().unwrap()]);
+        assert!(!out.status.success());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(field), "{err}");
+    }
+}

@@ -9,6 +9,7 @@
 use std::f64::consts::PI;
 
 use crate::error::InputError;
+use crate::wire_bending::BaseStiffness;
 
 /// Linear elastic isotropic material of one wire.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -315,20 +316,23 @@ impl Strand {
             .map_or(0.0, |l| l.wires() as f64 * l.wire_axial_stiffness())
     }
 
-    /// Minimum (all-slip) bending stiffness K_min = E_c I_c + m eta E_w I_w (N m^2),
-    /// eqs. (10), (11) (not (33), which misprints the areas; SPEC 9).
-    pub fn min_bending_stiffness(&self) -> f64 {
+    /// Minimum (all-slip) bending stiffness K_min = E_c I_c + m K_w (N m^2), with K_w the
+    /// frictionless bending stiffness of one helical wire in the form `base`
+    /// ([`crate::wire_bending`]). With [`BaseStiffness::Paper`] this is the paper's
+    /// E_c I_c + m eta E_w I_w, eqs. (10), (11) (not (33), which misprints the areas; SPEC 9).
+    pub fn min_bending_stiffness(&self, base: BaseStiffness) -> f64 {
         let core = self.spec.core.material.youngs_modulus * self.spec.core.inertia();
         core + self.layer.as_ref().map_or(0.0, |l| {
-            l.wires() as f64 * l.eta * l.spec.wire.material.youngs_modulus * l.spec.wire.inertia()
+            l.wires() as f64 * base.wire_stiffness(&l.spec.wire, l.lay_angle())
         })
     }
 
     /// All-stick bending stiffness K_max = K_min + sum_i eta E_w A_w (R_w sin phi_i)^2
-    /// (N m^2), eq. (22a), averaged over the phases: the sum of sin^2 over m evenly spaced
-    /// wires is m/2 (exact at every x for m >= 3; the mean over a pitch for m = 1, 2).
-    pub fn max_bending_stiffness(&self) -> f64 {
-        self.min_bending_stiffness()
+    /// (N m^2), eq. (22a), with K_min in the form `base`, averaged over the phases: the sum of
+    /// sin^2 over m evenly spaced wires is m/2 (exact at every x for m >= 3; the mean over a
+    /// pitch for m = 1, 2).
+    pub fn max_bending_stiffness(&self, base: BaseStiffness) -> f64 {
+        self.min_bending_stiffness(base)
             + self.layer.as_ref().map_or(0.0, |l| {
                 0.5 * l.wires() as f64 * l.wire_axial_stiffness() * l.radius * l.radius
             })
@@ -450,8 +454,17 @@ mod tests {
         assert_relative_eq!(l.eta, 0.829769, max_relative = 1e-6);
         assert_relative_eq!(s.mass_per_length(), 0.211624, max_relative = 1e-5);
         assert_relative_eq!(s.axial_stiffness(), 4541.87, max_relative = 1e-5);
-        assert_relative_eq!(s.min_bending_stiffness(), 1.57725e-3, max_relative = 1e-5);
-        assert_relative_eq!(s.max_bending_stiffness(), 1.135275e-2, max_relative = 1e-6);
+        let paper = BaseStiffness::Paper;
+        assert_relative_eq!(
+            s.min_bending_stiffness(paper),
+            1.57725e-3,
+            max_relative = 1e-5
+        );
+        assert_relative_eq!(
+            s.max_bending_stiffness(paper),
+            1.135275e-2,
+            max_relative = 1e-6
+        );
         assert_relative_eq!(
             s.traditional().bending_stiffness,
             2.357176e-2,

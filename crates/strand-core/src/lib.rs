@@ -1,6 +1,7 @@
-//! Constitutive core of `strand`: strand geometry and materials ([`geometry`], SPEC 1) and the
-//! stick/slip section laws of the equivalent beam ([`section`], SPEC 2), and the strand
-//! calculator's summary ([`summary`]).
+//! Constitutive core of `strand`: strand geometry and materials ([`geometry`], SPEC 1), the
+//! frictionless bending stiffness of a helical wire ([`wire_bending`]), the stick/slip section
+//! laws of the equivalent beam ([`section`], SPEC 2), and the strand calculator's summary
+//! ([`summary`]).
 //!
 //! Equation numbers "(n)" in the documentation are those of Guo, Wei, Tan, Zhao (2018),
 //! "Analysis of the cored stranded wire rope on the nonlinear bending dynamic
@@ -10,6 +11,7 @@ pub mod error;
 pub mod geometry;
 pub mod section;
 pub mod summary;
+pub mod wire_bending;
 
 pub use error::InputError;
 pub use geometry::{
@@ -17,6 +19,8 @@ pub use geometry::{
     TraditionalBeam, WireSpec,
 };
 pub use section::{
-    LawKind, PlanarResponse, SectionLaw, SectionResponse, Station, WireReport, WireState,
+    LawKind, PlanarResponse, SectionLaw, SectionOptions, SectionResponse, Station, WireReport,
+    WireState,
 };
 pub use summary::{SectionPoint, StrandSummary};
+pub use wire_bending::BaseStiffness;

@@ -4,7 +4,8 @@
 use serde::Serialize;
 
 use crate::geometry::Strand;
-use crate::section::{LawKind, SectionLaw, WireReport};
+use crate::section::{LawKind, SectionLaw, SectionOptions, WireReport};
+use crate::wire_bending::BaseStiffness;
 
 /// Derived quantities of a strand (keys as in SPEC 6 `strand section --json`). Layer
 /// quantities are `None` for a plain wire.
@@ -26,10 +27,16 @@ pub struct StrandSummary {
     /// Equivalent axial stiffness EA_eq (N), eq. (32).
     #[serde(rename = "EA")]
     pub ea: f64,
-    /// All-slip bending stiffness K_min (N m^2), eq. (11).
+    /// Which frictionless wire bending stiffness K_min uses (`section.base_stiffness`).
+    pub base_stiffness: BaseStiffness,
+    /// All-slip bending stiffness K_min the section laws use (N m^2): eq. (11) with the wire
+    /// term in the form `base_stiffness`.
     #[serde(rename = "K_min")]
     pub k_min: f64,
-    /// All-stick bending stiffness K_max (N m^2), eq. (22a) summed.
+    /// The paper's K_min, with eta = cos^3(alpha) (N m^2), eq. (11).
+    #[serde(rename = "K_min_paper")]
+    pub k_min_paper: f64,
+    /// All-stick bending stiffness K_max (N m^2): K_min plus eq. (22a) summed.
     #[serde(rename = "K_max")]
     pub k_max: f64,
     /// Traditional beam bending stiffness EI (N m^2).
@@ -68,8 +75,9 @@ pub struct SectionPoint {
 }
 
 impl StrandSummary {
-    /// Summarises `strand`.
-    pub fn new(strand: &Strand) -> Self {
+    /// Summarises `strand` with the section `options`.
+    pub fn new(strand: &Strand, options: &SectionOptions) -> Self {
+        let base = options.base_stiffness;
         let l = strand.layer();
         let t = strand.traditional();
         StrandSummary {
@@ -80,8 +88,10 @@ impl StrandSummary {
             wire_gap: l.map(|l| l.wire_gap()).filter(|g| g.is_finite()),
             mass_per_length: strand.mass_per_length(),
             ea: strand.axial_stiffness(),
-            k_min: strand.min_bending_stiffness(),
-            k_max: strand.max_bending_stiffness(),
+            base_stiffness: base,
+            k_min: strand.min_bending_stiffness(base),
+            k_min_paper: strand.min_bending_stiffness(BaseStiffness::Paper),
+            k_max: strand.max_bending_stiffness(base),
             ei_traditional: t.bending_stiffness,
             ea_traditional: t.axial_stiffness,
         }
@@ -89,11 +99,18 @@ impl StrandSummary {
 }
 
 impl SectionPoint {
-    /// Evaluates `law` of `strand` at strain `eps`, curvature magnitude `curvature` (positive:
-    /// convex side toward +y, the paper's orientation; negative: the other way) and material
-    /// coordinate `at`, from a state without slip.
-    pub fn new(strand: &Strand, law: LawKind, eps: f64, curvature: f64, at: f64) -> Self {
-        let law_ = SectionLaw::new(strand, law);
+    /// Evaluates `law` of `strand` (with the section `options`) at strain `eps`, curvature
+    /// magnitude `curvature` (positive: convex side toward +y, the paper's orientation;
+    /// negative: the other way) and material coordinate `at`, from a state without slip.
+    pub fn new(
+        strand: &Strand,
+        law: LawKind,
+        options: &SectionOptions,
+        eps: f64,
+        curvature: f64,
+        at: f64,
+    ) -> Self {
+        let law_ = SectionLaw::with_options(strand, law, options);
         let st = law_.station(at);
         let kappa = -curvature; // signed planar curvature kappa_z
         let slip = vec![0.0; law_.state_len()];

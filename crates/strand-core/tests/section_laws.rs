@@ -7,8 +7,8 @@ mod common;
 use proptest::prelude::*;
 use std::f64::consts::PI;
 use strand_core::{
-    LawKind, LayDirection, LayerSpec, Material, SectionLaw, Station, Strand, StrandSpec, WireSpec,
-    WireState,
+    BaseStiffness, LawKind, LayDirection, LayerSpec, Material, SectionLaw, Station, Strand,
+    StrandSpec, WireSpec, WireState,
 };
 
 /// A random valid 1+m strand: sizes, moduli, lay angle, phase, lay direction, friction.
@@ -99,7 +99,7 @@ proptest! {
         prop_assert!(m2 >= m1 * (1.0 - 1e-14), "M decreased: {m1} -> {m2}");
         // Lipschitz with the all-stick tangent: no jump anywhere.
         let kstick: f64 = law.planar_wires(&st, eps, sense * k1, &[]).iter().map(|w| w.k_stick).sum();
-        let lip = (s.min_bending_stiffness() + kstick) * (k2 - k1);
+        let lip = (s.min_bending_stiffness(BaseStiffness::default()) + kstick) * (k2 - k1);
         prop_assert!(m2 - m1 <= lip * (1.0 + 1e-9) + 1e-300, "jump {} > {}", m2 - m1, lip);
     }
 
@@ -136,7 +136,7 @@ proptest! {
         let law = SectionLaw::new(&s, kind);
         let st = law.station(x);
         let r = planar(&law, &st, eps, k);
-        let expect = s.min_bending_stiffness() * k;
+        let expect = s.min_bending_stiffness(BaseStiffness::default()) * k;
         prop_assert!((r.moment - expect).abs() <= 1e-12 * expect.abs().max(1e-300));
     }
 
@@ -155,10 +155,10 @@ proptest! {
         // Wires within 1e-7 rad of the neutral axis have (almost) no friction limit.
         let near_axis = st.wires.iter().any(|w| w.phase.abs() < 1e-6 || (PI - w.phase.abs()) < 1e-6);
         if !near_axis {
-            let want = s.min_bending_stiffness() + sum;
+            let want = s.min_bending_stiffness(BaseStiffness::default()) + sum;
             prop_assert!((secant - want).abs() <= 1e-9 * want);
             if s.layer().unwrap().wires() >= 3 {
-                prop_assert!((secant - s.max_bending_stiffness()).abs() <= 1e-9 * want);
+                prop_assert!((secant - s.max_bending_stiffness(BaseStiffness::default())).abs() <= 1e-9 * want);
             }
         }
     }
@@ -183,7 +183,7 @@ proptest! {
                     let d = 1e-9 * kc;
                     let below = sense * planar(&law, &st, eps, sense * (kc - d)).moment;
                     let above = sense * planar(&law, &st, eps, sense * (kc + d)).moment;
-                    let others = (s.min_bending_stiffness() + s.max_bending_stiffness()) * 4.0 * d;
+                    let others = (s.min_bending_stiffness(BaseStiffness::default()) + s.max_bending_stiffness(BaseStiffness::default())) * 4.0 * d;
                     let drop = w.k_stick * kc * (1.0 - c2);
                     prop_assert!(((below - above) - drop).abs() <= others + 1e-9 * drop,
                         "drop {} vs {}", below - above, drop);
@@ -229,7 +229,7 @@ proptest! {
         let hk = 1e-6 * k;
         let fd_k = (law.planar(&st, eps, -k + hk, &slip, &mut trial).moment
             - law.planar(&st, eps, -k - hk, &slip, &mut trial).moment) / (2.0 * hk);
-        let scale = s.max_bending_stiffness() * 2.0;
+        let scale = s.max_bending_stiffness(BaseStiffness::default()) * 2.0;
         prop_assert!((fd_k - r.moment_curvature).abs() <= 1e-6 * scale, "dM/dk {} fd {}", r.moment_curvature, fd_k);
         let he = 1e-6 * eps;
         let fd_e = (law.planar(&st, eps + he, -k, &slip, &mut trial).moment
@@ -307,9 +307,9 @@ proptest! {
             prop_assert!(r.slip_work >= 0.0);
             // Friction limit: |M - K_min kappa| <= sum of the wires' slip moments.
             let limit: f64 = law.planar_wires(&st, eps, k, &slip).iter().map(|w| w.m_slip).sum();
-            let excess = (r.moment - s.min_bending_stiffness() * k).abs();
+            let excess = (r.moment - s.min_bending_stiffness(BaseStiffness::default()) * k).abs();
             // Rounding of the subtraction is relative to K_min kappa.
-            let round = 1e-12 * (s.min_bending_stiffness() * k).abs();
+            let round = 1e-12 * (s.min_bending_stiffness(BaseStiffness::default()) * k).abs();
             prop_assert!(excess <= limit * (1.0 + 1e-12) + round, "{excess} > {limit}");
             slip.copy_from_slice(&trial);
         }
@@ -485,7 +485,7 @@ fn hysteretic_unloading_slope_is_all_stick() {
         let levered = law
             .planar_wires(&st, eps, -kmax, &slip)
             .iter()
-            .filter(|w| w.k_stick > 1e-12 * s.max_bending_stiffness())
+            .filter(|w| w.k_stick > 1e-12 * s.max_bending_stiffness(BaseStiffness::default()))
             .count();
         assert_eq!(loaded.slipping, levered);
         let dk = 1e-6 * kmax;
@@ -496,7 +496,7 @@ fn hysteretic_unloading_slope_is_all_stick() {
             .iter()
             .map(|w| w.k_stick)
             .sum();
-        let want = s.min_bending_stiffness() + kstick;
+        let want = s.min_bending_stiffness(BaseStiffness::default()) + kstick;
         assert!(
             (slope - want).abs() <= 1e-8 * want,
             "slope {slope} vs {want}"

@@ -170,7 +170,7 @@ fn table1_strand_continuous_law_by_continuation() {
         let prob = Cantilever::new(st.length(), q);
         let sol = solve(&prob, &law, &Options::default()).unwrap();
         let eq = check_equilibrium(&sol, &law);
-        let param = q * st.length().powi(3) / st.min_bending_stiffness();
+        let param = q * st.length().powi(3) / law.section_law().base_bending_stiffness();
         println!(
             "Table 1, g = {g}: q L^3/K_min = {param:.1}, tip ({:.6}, {:.6}) m, root kappa \
              {:.3} 1/m, theta(L) = {:.2} deg, equilibrium error {eq:.1e} (of q L^2/2), error \

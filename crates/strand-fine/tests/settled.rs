@@ -4,7 +4,7 @@
 //! (constant EI, inextensible: the independent shooting solution).
 
 use nalgebra::Vector3;
-use strand_core::{Strand, StrandSpec};
+use strand_core::{BaseStiffness, Strand, StrandSpec};
 use strand_elastica::{Cantilever, ConstantEi, Options, solve};
 use strand_fine::{
     ContactOptions, Discretisation, FineModel, SettledOptions, Support, solve_settled,
@@ -58,8 +58,8 @@ fn short_strand_settles_between_the_all_slip_and_all_stick_elastica() {
         -s.tip_displacement()[1]
     };
     let (stick, slip) = (
-        drop(strand.max_bending_stiffness()),
-        drop(strand.min_bending_stiffness()),
+        drop(strand.max_bending_stiffness(BaseStiffness::default())),
+        drop(strand.min_bending_stiffness(BaseStiffness::default())),
     );
     println!(
         "tip drop {:.6} m; all-stick {stick:.6} m, all-slip {slip:.6} m",

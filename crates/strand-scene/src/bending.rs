@@ -105,7 +105,7 @@ pub fn run_bending(
             opts.pitches, opts.segments_per_pitch
         )));
     }
-    let law = SectionLaw::new(strand, scene.law);
+    let law = SectionLaw::with_options(strand, scene.law, &scene.section);
     let eps = opts.tension / strand.axial_stiffness();
     let first = law_moment(&law, strand, eps, 1e-9).1;
     let curvatures = if opts.curvatures.is_empty() {
@@ -198,8 +198,8 @@ pub fn run_bending(
         law: scene.law.to_string(),
         tension: opts.tension,
         strain: eps,
-        k_min: strand.min_bending_stiffness(),
-        k_max: strand.max_bending_stiffness(),
+        k_min: strand.min_bending_stiffness(scene.section.base_stiffness),
+        k_max: strand.max_bending_stiffness(scene.section.base_stiffness),
         first_slip_curvature: first,
         pitches: opts.pitches,
         segments_per_pitch: opts.segments_per_pitch,

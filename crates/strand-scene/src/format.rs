@@ -13,9 +13,13 @@ pub struct SceneFile {
     pub name: String,
     /// The strand.
     pub strand: StrandFile,
-    /// Section law of the equivalent model: `continuous` (default), `paper`, `hysteretic`.
+    /// Section law of the equivalent model: `continuous`, `paper`, `hysteretic` (default
+    /// `continuous` in statics, `hysteretic` in dynamics).
     #[serde(default)]
     pub law: Option<String>,
+    /// Options of the section law.
+    #[serde(default)]
+    pub section: Option<SectionFile>,
     /// Supports, at most one per end.
     #[serde(default)]
     pub supports: Vec<SupportFile>,
@@ -45,6 +49,16 @@ pub struct StrandFile {
     /// Wire-core friction coefficient mu (default 0.3).
     #[serde(default)]
     pub friction: Option<f64>,
+}
+
+/// `section`: options of the equivalent model's section law.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq, Default)]
+#[serde(deny_unknown_fields)]
+pub struct SectionFile {
+    /// The helical wires' frictionless bending stiffness in K_min: `costello` (default),
+    /// `foti`, `papailiou` or `paper` (eta = cos^3(alpha), eqs. (10), (11)).
+    #[serde(default)]
+    pub base_stiffness: Option<String>,
 }
 
 /// A core wire.

@@ -7,11 +7,13 @@
 use std::path::Path;
 
 use strand_core::{
-    DEFAULT_FRICTION, InputError, LawKind, LayDirection, LayerSpec, Material, Strand, StrandSpec,
-    WireSpec,
+    BaseStiffness, DEFAULT_FRICTION, InputError, LawKind, LayDirection, LayerSpec, Material,
+    SectionOptions, Strand, StrandSpec, WireSpec,
 };
 
-use crate::format::{AnalysisFile, BeamModelFile, FineModelFile, LayerFile, SceneFile, WireFile};
+use crate::format::{
+    AnalysisFile, BeamModelFile, FineModelFile, LayerFile, SceneFile, SectionFile, WireFile,
+};
 
 /// A rejected scene: the JSON path of the fault and what is wrong.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -146,6 +148,8 @@ pub struct Scene {
     pub strand: Strand,
     /// Section law of the equivalent model.
     pub law: LawKind,
+    /// Options of the section law (`section`).
+    pub section: SectionOptions,
     /// Supports.
     pub supports: Vec<Support>,
     /// Unit direction of the initially straight strand.
@@ -188,10 +192,13 @@ impl Scene {
             return Err(SceneError::new("name", "must not be empty"));
         }
         let strand = strand(&file)?;
+        let section = section(file.section.as_ref())?;
         let law = match file.law.as_deref() {
-            None | Some("continuous") => LawKind::Continuous,
-            Some("paper") => LawKind::Paper,
-            Some("hysteretic") => LawKind::Hysteretic,
+            // Decided below from the analysis: `continuous` in statics, `hysteretic` in dynamics.
+            None => None,
+            Some("continuous") => Some(LawKind::Continuous),
+            Some("paper") => Some(LawKind::Paper),
+            Some("hysteretic") => Some(LawKind::Hysteretic),
             Some("constant") => {
                 return Err(SceneError::new(
                     "law",
@@ -257,6 +264,13 @@ impl Scene {
             }
         };
         let analysis = analysis(&file.analysis)?;
+        // A dynamic run defaults to the only energetically consistent stick/slip law: the
+        // moment of `continuous` and `paper` depends on the tension without a potential, so
+        // their non-potential work can feed energy in (README, the `continuous` finding).
+        let law = law.unwrap_or(match analysis {
+            Analysis::Static { .. } => LawKind::Continuous,
+            Analysis::Dynamic(_) => LawKind::Hysteretic,
+        });
         if matches!(analysis, Analysis::Static { .. }) && supports.is_empty() {
             return Err(SceneError::new(
                 "supports",
@@ -268,6 +282,7 @@ impl Scene {
             name: file.name.clone(),
             strand,
             law,
+            section,
             supports,
             direction,
             gravity,
@@ -320,6 +335,26 @@ fn count(path: &str, v: i64, min: i64, max: i64) -> Result<usize, SceneError> {
     } else {
         Ok(v as usize)
     }
+}
+
+fn section(file: Option<&SectionFile>) -> Result<SectionOptions, SceneError> {
+    let mut options = SectionOptions::default();
+    let Some(file) = file else {
+        return Ok(options);
+    };
+    if let Some(name) = file.base_stiffness.as_deref() {
+        options.base_stiffness = BaseStiffness::from_name(name).ok_or_else(|| {
+            let names: Vec<&str> = BaseStiffness::ALL.iter().map(|b| b.name()).collect();
+            SceneError::new(
+                "section.base_stiffness",
+                format!(
+                    "unknown base stiffness `{name}`: expected {}",
+                    names.join(", ")
+                ),
+            )
+        })?;
+    }
+    Ok(options)
 }
 
 fn material(w: &WireFile) -> Material {

@@ -51,7 +51,12 @@ fn check(text: &str) -> Result<(), TestCaseError> {
         Ok(scene) => {
             // An accepted scene is usable: its strand quantities are finite.
             prop_assert!(scene.strand.mass_per_length().is_finite());
-            prop_assert!(scene.strand.min_bending_stiffness().is_finite());
+            prop_assert!(
+                scene
+                    .strand
+                    .min_bending_stiffness(scene.section.base_stiffness)
+                    .is_finite()
+            );
         }
         Err(e) => {
             prop_assert!(!e.message.is_empty());

@@ -433,7 +433,7 @@ fn beam_points(beam: &Beam, s: &DynamicSummary) -> anyhow::Result<Vec<PointState
 pub fn hysteretic_loop_area(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
     let scene = ctx.scene("chatter-hanging")?;
     let strand = &scene.strand;
-    let law = SectionLaw::new(strand, LawKind::Hysteretic);
+    let law = SectionLaw::with_options(strand, LawKind::Hysteretic, &scene.section);
     let g = scene.gravity[1].hypot(scene.gravity[0]);
     let eps = strand.mass_per_length() * g * strand.length() / law.axial_stiffness();
     let st = law.station(0.0);
@@ -676,10 +676,11 @@ pub fn near_straight(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
                         straight_moment = straight_moment.max(p.moment.abs());
                     }
                 } else if e != 0.0 && name.ends_with("planar") {
+                    let base = beam.law().options().base_stiffness;
                     let expect = if e > 0.0 {
-                        strand.max_bending_stiffness()
+                        strand.max_bending_stiffness(base)
                     } else {
-                        strand.min_bending_stiffness()
+                        strand.min_bending_stiffness(base)
                     };
                     for p in &ev.points {
                         secant = secant.max(rel(p.moment / p.kappa, expect));

@@ -103,7 +103,10 @@ pub fn fig7(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Findin
                 let (d, at) = largest(&p);
                 worst = worst.max(d);
                 ours.push(format!("g = {g}: {} m at s = {at:.3} m", sci(d)));
-                let k_min = run.scene.strand.min_bending_stiffness();
+                let k_min = run
+                    .scene
+                    .strand
+                    .min_bending_stiffness(run.scene.section.base_stiffness);
                 if let (Ok(f), Ok(e)) = (root_stiffness(&dir), root_stiffness(&eq_dir)) {
                     root.push(format!(
                         "g = {g}: fine {:.3}, equivalent {:.3}",

@@ -120,9 +120,10 @@ pub(crate) fn slipping_along(rows: &[WireRow]) -> Vec<(f64, f64)> {
 pub fn figures(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Finding>> {
     let mut findings = Vec::new();
     let strand = &runs[0].scene.strand;
+    let base = runs[0].scene.section.base_stiffness;
     let (k_min, k_max) = (
-        strand.min_bending_stiffness(),
-        strand.max_bending_stiffness(),
+        strand.min_bending_stiffness(base),
+        strand.max_bending_stiffness(base),
     );
     let ei = strand.traditional().bending_stiffness;
     let mut eqs = Vec::new();

@@ -107,7 +107,7 @@ pub fn elastica(scene: &Scene, kind: BeamKind) -> Result<Solution, String> {
     let solution = match kind {
         BeamKind::Equivalent => {
             // The hysteretic law from a virgin state on a monotone load path is `continuous`.
-            let law = StrandLaw::new(SectionLaw::new(strand, scene.law));
+            let law = StrandLaw::new(SectionLaw::with_options(strand, scene.law, &scene.section));
             solve(&cantilever(law.axial_stiffness()), &law, &opts)
         }
         BeamKind::Traditional => {

@@ -30,8 +30,10 @@
 //! general 3D bending it changes sides when `kappa_z` changes sign, so the limits of the
 //! (already asymmetric) paper law jump there. K_min and the axial stiffness are isotropic.
 
+mod options;
 mod slider;
 
+pub use options::SectionOptions;
 pub use slider::WireState;
 use slider::{SliderForce, slider};
 
@@ -100,6 +102,7 @@ pub struct SectionLaw {
     base_bending: f64,
     layer: Option<LayerLaw>,
     strand: Strand,
+    options: SectionOptions,
 }
 
 /// One wire at one station: its phase and the quantities that depend only on it.
@@ -208,15 +211,25 @@ pub struct WireReport {
 }
 
 impl SectionLaw {
-    /// Builds the law of `kind` for `strand`. `constant` uses the traditional beam's EI and
-    /// EA; the others use EA_eq, K_min and the helical layer.
+    /// Builds the law of `kind` for `strand` with the default [`SectionOptions`] (K_min from
+    /// Costello's wire bending stiffness).
     pub fn new(strand: &Strand, kind: LawKind) -> Self {
+        Self::with_options(strand, kind, &SectionOptions::default())
+    }
+
+    /// Builds the law of `kind` for `strand` with `options`. `constant` uses the traditional
+    /// beam's EI and EA (and no options); the others use EA_eq, K_min in the form
+    /// `options.base_stiffness` and the helical layer.
+    pub fn with_options(strand: &Strand, kind: LawKind, options: &SectionOptions) -> Self {
         let (axial_stiffness, base_bending) = match kind {
             LawKind::Constant => {
                 let t = strand.traditional();
                 (t.axial_stiffness, t.bending_stiffness)
             }
-            _ => (strand.axial_stiffness(), strand.min_bending_stiffness()),
+            _ => (
+                strand.axial_stiffness(),
+                strand.min_bending_stiffness(options.base_stiffness),
+            ),
         };
         let layer = match kind {
             LawKind::Constant => None,
@@ -241,6 +254,7 @@ impl SectionLaw {
             base_bending,
             layer,
             strand: strand.clone(),
+            options: *options,
         }
     }
 
@@ -252,6 +266,7 @@ impl SectionLaw {
             base_bending: bending_stiffness,
             layer: None,
             strand: strand.clone(),
+            options: SectionOptions::default(),
         }
     }
 
@@ -262,6 +277,10 @@ impl SectionLaw {
     /// The strand the law was built for.
     pub fn strand(&self) -> &Strand {
         &self.strand
+    }
+    /// The options the law was built with.
+    pub fn options(&self) -> &SectionOptions {
+        &self.options
     }
     /// Axial stiffness EA (N).
     pub fn axial_stiffness(&self) -> f64 {

@@ -77,7 +77,7 @@ pub fn dynamic_options(scene: &Scene) -> Option<DynamicOptions> {
 
 fn beam_of(scene: &Scene, name: &str, model: &BeamModel, kind: LawKind) -> Result<Beam, RunError> {
     let strand = &scene.strand;
-    let law = SectionLaw::new(strand, kind);
+    let law = SectionLaw::with_options(strand, kind, &scene.section);
     let mass = model.mass_per_length.unwrap_or(strand.mass_per_length());
     let spec = BeamSpec {
         elements: model.elements,

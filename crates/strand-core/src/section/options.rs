@@ -1,0 +1,22 @@
+//! Choices a scene makes about the section law beyond its kind (the scene's `section` object).
+
+use crate::wire_bending::BaseStiffness;
+
+/// Options of the section laws of the equivalent beam. Build with struct update syntax,
+/// `SectionOptions { base_stiffness: BaseStiffness::Paper, ..Default::default() }`, so that
+/// options added later keep their defaults.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct SectionOptions {
+    /// The helical wires' frictionless bending stiffness in K_min (`section.base_stiffness`;
+    /// default Costello's).
+    pub base_stiffness: BaseStiffness,
+}
+
+impl SectionOptions {
+    /// The paper's section: K_min with eta = cos^3(alpha) (eqs. (10), (11)).
+    pub fn paper() -> Self {
+        SectionOptions {
+            base_stiffness: BaseStiffness::Paper,
+        }
+    }
+}
