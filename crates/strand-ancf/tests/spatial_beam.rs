@@ -80,13 +80,14 @@ fn spatial_tangent_matches_finite_differences() {
                 let (mut fp, mut fm) = (vec![0.0; n], vec![0.0; n]);
                 let mut qp = q.clone();
                 qp[gj] += h;
+                // The tangent holds the neighbours' mean strains the law reads.
                 let ep = b
-                    .internal(&qp, &slip, &mut trial, &mut fp, None, None)
+                    .internal_frozen(&qp, &q, &slip, &mut trial, &mut fp, None, None)
                     .unwrap();
                 let mut qm = q.clone();
                 qm[gj] -= h;
                 let em = b
-                    .internal(&qm, &slip, &mut trial, &mut fm, None, None)
+                    .internal_frozen(&qm, &q, &slip, &mut trial, &mut fm, None, None)
                     .unwrap();
                 if ep.slipping != base.slipping || em.slipping != base.slipping {
                     skipped += 1;

@@ -157,32 +157,69 @@ pub fn against_elastica(
     }
 }
 
-/// Tension of the equivalent model against the paper's values: one row per point.
-pub fn paper_tension(scene: &str, dir: &Path, tol: &TensionTol) -> Vec<Row> {
-    const CHECK: &str = "paper-tension";
+/// Tension of the equivalent model (`centerline.csv` in `dir`) against the elastica's
+/// -q (L - s) sin(theta) of the same law: one row per point, relative to the elastica's
+/// tension there, and one for the largest difference along the strand from `tol.from` on,
+/// relative to q L.
+pub fn tension_vs_elastica(
+    scene: &str,
+    dir: &Path,
+    reference: &Result<Solution, String>,
+    tol: &TensionTol,
+) -> Vec<Row> {
+    const CHECK: &str = "tension-vs-elastica";
+    let r = match reference {
+        Ok(r) => r,
+        Err(e) => return vec![Row::failed(scene, CHECK, "-", format!("reference: {e}"))],
+    };
     let c = match Centerline::load(dir) {
         Ok(c) => c,
         Err(e) => return vec![Row::failed(scene, CHECK, "-", format!("{e:#}"))],
     };
-    tol.points
+    let mut rows: Vec<Row> = tol
+        .points
         .iter()
         .map(|p| {
             let t = c.interpolate(&c.tension, p.x);
-            let rel = (t - p.paper).abs() / p.paper;
+            let el = r.sample(p.x).tension;
             Row::measured(
                 scene,
                 CHECK,
                 &format!("x={}", p.x),
-                rel,
+                (t - el).abs() / el.abs(),
                 "",
                 Bound::AtMost(tol.relative),
             )
             .with_note(format!(
-                "tension {t:.4} N at s = {} m, paper {} N",
+                "tension {t:.5} N at s = {} m, elastica {el:.5} N (paper {} N)",
                 p.x, p.paper
             ))
         })
-        .collect()
+        .collect();
+    let ql = r.problem.load * r.problem.length;
+    let (mut worst, mut at) = (0.0f64, f64::NAN);
+    for (s, t) in c.s.iter().zip(&c.tension) {
+        let d = (t - r.sample(*s).tension).abs();
+        if *s >= tol.from && d > worst {
+            (worst, at) = (d, *s);
+        }
+    }
+    rows.push(
+        Row::measured(
+            scene,
+            CHECK,
+            "along",
+            worst / ql,
+            "",
+            Bound::AtMost(tol.along),
+        )
+        .with_note(format!(
+            "largest |T - T_elastica| {worst:.3e} N at s = {at:.3} m (from s = {} m on), q L = \
+             {ql:.4} N",
+            tol.from
+        )),
+    );
+    rows
 }
 
 /// Energy balance error of a dynamic run relative to its largest kinetic energy: the larger

@@ -285,10 +285,12 @@ impl SceneRun<'_> {
                     t,
                 ));
             }
-            CheckSpec::PaperTension(t) => {
-                rows.extend(checks::paper_tension(
+            CheckSpec::TensionVsElastica(t) => {
+                let reference = checks::elastica(self.scene, BeamKind::Equivalent);
+                rows.extend(checks::tension_vs_elastica(
                     &name,
                     &self.out.join("equivalent"),
+                    &reference,
                     t,
                 ));
             }

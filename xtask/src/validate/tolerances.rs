@@ -22,7 +22,7 @@ use serde::{Deserialize, Serialize, de::DeserializeOwned};
 pub const CHECK_NAMES: [&str; 8] = [
     "equivalent-vs-elastica",
     "traditional-vs-elastica",
-    "paper-tension",
+    "tension-vs-elastica",
     "energy-balance",
     "convergence-order",
     "time-step-order",
@@ -61,13 +61,18 @@ pub struct TensionPoint {
     pub paper: f64,
 }
 
-/// Tension against values read off the paper, as a relative error limit.
+/// The equivalent model's tension against the elastica's -q (L - s) sin(theta) of the same
+/// section law: at points (the paper's Fig. 12, its values shown beside) and along the strand.
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct TensionTol {
-    /// Largest relative error |T - T_paper| / T_paper.
+    /// Largest relative error |T - T_elastica| / T_elastica at the points.
     pub relative: f64,
-    /// The paper's values.
+    /// Largest |T - T_elastica| / (q L) along the strand from `from` on.
+    pub along: f64,
+    /// Material coordinate from which the comparison along the strand runs (m).
+    pub from: f64,
+    /// The points, with the paper's values.
     pub points: Vec<TensionPoint>,
     /// Why this limit.
     pub why: String,
@@ -146,8 +151,8 @@ pub enum CheckSpec {
     EquivalentVsElastica(DistanceTol),
     /// Traditional model statics against the elastica with constant EI.
     TraditionalVsElastica(DistanceTol),
-    /// Equivalent model tension against the paper's values.
-    PaperTension(TensionTol),
+    /// Equivalent model tension against the elastica's.
+    TensionVsElastica(TensionTol),
     /// Energy balance of every model's dynamics.
     EnergyBalance(EnergyTol),
     /// Convergence order in elements of the equivalent model's statics.
@@ -166,7 +171,7 @@ impl CheckSpec {
         match self {
             CheckSpec::EquivalentVsElastica(_) => "equivalent-vs-elastica",
             CheckSpec::TraditionalVsElastica(_) => "traditional-vs-elastica",
-            CheckSpec::PaperTension(_) => "paper-tension",
+            CheckSpec::TensionVsElastica(_) => "tension-vs-elastica",
             CheckSpec::EnergyBalance(_) => "energy-balance",
             CheckSpec::ConvergenceOrder(_) => "convergence-order",
             CheckSpec::TimeStepOrder(_) => "time-step-order",
@@ -180,7 +185,7 @@ impl CheckSpec {
             CheckSpec::EquivalentVsElastica(t)
             | CheckSpec::TraditionalVsElastica(t)
             | CheckSpec::EquivalentVsFine(t) => t.quick,
-            CheckSpec::PaperTension(t) => t.quick,
+            CheckSpec::TensionVsElastica(t) => t.quick,
             CheckSpec::EnergyBalance(t) => t.quick,
             CheckSpec::ConvergenceOrder(t) => t.quick,
             CheckSpec::TimeStepOrder(t) => t.quick,
@@ -194,7 +199,7 @@ impl CheckSpec {
             CheckSpec::EquivalentVsElastica(t)
             | CheckSpec::TraditionalVsElastica(t)
             | CheckSpec::EquivalentVsFine(t) => &t.why,
-            CheckSpec::PaperTension(t) => &t.why,
+            CheckSpec::TensionVsElastica(t) => &t.why,
             CheckSpec::EnergyBalance(t) => &t.why,
             CheckSpec::ConvergenceOrder(t) => &t.why,
             CheckSpec::TimeStepOrder(t) => &t.why,
@@ -300,7 +305,7 @@ impl Tolerances {
                     "traditional-vs-elastica" => {
                         CheckSpec::TraditionalVsElastica(typed(&scene, name, v)?)
                     }
-                    "paper-tension" => CheckSpec::PaperTension(typed(&scene, name, v)?),
+                    "tension-vs-elastica" => CheckSpec::TensionVsElastica(typed(&scene, name, v)?),
                     "energy-balance" => CheckSpec::EnergyBalance(typed(&scene, name, v)?),
                     "convergence-order" => CheckSpec::ConvergenceOrder(typed(&scene, name, v)?),
                     "time-step-order" => CheckSpec::TimeStepOrder(typed(&scene, name, v)?),
@@ -351,8 +356,12 @@ fn validate_spec(scene: &str, spec: &CheckSpec) -> anyhow::Result<()> {
                 (None, _) => {}
             }
         }
-        CheckSpec::PaperTension(t) => {
+        CheckSpec::TensionVsElastica(t) => {
             positive(t.relative, &at("relative"))?;
+            positive(t.along, &at("along"))?;
+            if !(t.from >= 0.0) {
+                bail!("{}: must be zero or positive, got {}", at("from"), t.from);
+            }
             if t.points.is_empty() {
                 bail!("{}: needs at least one point", at("points"));
             }

@@ -14,9 +14,30 @@ impl Beam {
     /// coordinates, overwritten) and, if given, the tangent `dQ_e/dq` of the free coordinates
     /// into `tangent` (overwritten). `slip`/`trial` are the law's committed and trial state
     /// ([`Self::state_len`]); `points`, if given, receives the state at every bending point.
+    ///
+    /// The tangent differentiates the forces with the neighbouring elements' mean strains, in
+    /// the strain the section law reads (module `strain_recovery`), held fixed: that coupling
+    /// would not fit in the band. [`Self::internal_frozen`] evaluates the forces with them held.
     pub fn internal(
         &self,
         q: &[f64],
+        slip: &[f64],
+        trial: &mut [f64],
+        force: &mut [f64],
+        tangent: Option<&mut BandMatrix>,
+        points: Option<&mut [PointState]>,
+    ) -> Result<Evaluation, BeamError> {
+        self.internal_frozen(q, q, slip, trial, force, tangent, points)
+    }
+
+    /// [`Self::internal`] at coordinates `q` with the mean strains that each element's section
+    /// law reads of its neighbours taken at coordinates `means_at` instead: the forces whose
+    /// derivative the tangent is (for finite-difference checks).
+    #[allow(clippy::too_many_arguments)]
+    pub fn internal_frozen(
+        &self,
+        q: &[f64],
+        means_at: &[f64],
         slip: &[f64],
         trial: &mut [f64],
         force: &mut [f64],
@@ -41,13 +62,14 @@ impl Beam {
             let tr = &mut trial[s0.min(tl)..s1.min(tl)];
             let pts = points.as_deref_mut().map(|p| &mut p[p0..p0 + np]);
             let want_k = tangent.is_some();
+            let means = self.other_means(means_at, e)?;
             let (ke, ev, sym): (&[f64], Evaluation, bool) = match self.spec.element {
                 ElementKind::Planar => {
                     let qe = self.planar_coords(q, e);
                     let (f, ev, sym) = if want_k {
-                        self.element_planar(e, rule, &qe, sl, tr, Some(&mut kp), pts)?
+                        self.element_planar(e, rule, &qe, &means, sl, tr, Some(&mut kp), pts)?
                     } else {
-                        let (f, ev) = self.planar_forces(e, rule, &qe, sl, tr, pts)?;
+                        let (f, ev) = self.planar_forces(e, rule, &qe, &means, sl, tr, pts)?;
                         (f, ev, true)
                     };
                     for a in 0..8 {
@@ -57,8 +79,9 @@ impl Beam {
                 }
                 ElementKind::Spatial => {
                     let qe = self.spatial_coords(q, e);
+                    let k = want_k.then_some(&mut ks);
                     let (f, ev, sym) =
-                        self.element_spatial(e, rule, &qe, sl, tr, want_k.then_some(&mut ks), pts)?;
+                        self.element_spatial(e, rule, &qe, &means, sl, tr, k, pts)?;
                     for a in 0..12 {
                         force[e * nd + a] += f[a];
                     }
@@ -135,17 +158,19 @@ impl Beam {
         let ws = self.state_per_point();
         let slip = vec![0.0; rule.bend.len() * ws];
         let mut trial = slip.clone();
+        let means = self.other_means(q, e)?;
+        let m = &means;
         Ok(match self.spec.element {
             ElementKind::Planar => {
                 let mut k = PlanarMatrix::zeros();
                 let qe = self.planar_coords(q, e);
-                self.element_planar(e, rule, &qe, &slip, &mut trial, Some(&mut k), None)?;
+                self.element_planar(e, rule, &qe, m, &slip, &mut trial, Some(&mut k), None)?;
                 DMatrix::from_column_slice(8, 8, k.as_slice())
             }
             ElementKind::Spatial => {
                 let mut k = SpatialMatrix::zeros();
                 let qe = self.spatial_coords(q, e);
-                self.element_spatial(e, rule, &qe, &slip, &mut trial, Some(&mut k), None)?;
+                self.element_spatial(e, rule, &qe, m, &slip, &mut trial, Some(&mut k), None)?;
                 DMatrix::from_column_slice(12, 12, k.as_slice())
             }
         })

@@ -9,6 +9,7 @@
 //! * `inertia`: the constant mass matrix of the free coordinates (eq. (44));
 //! * `loads`: the generalized gravity force (eq. (45));
 //! * `assembly`: the global elastic force and tangent from the element contributions;
+//! * `strain_recovery`: the strain the section law reads, from the element means;
 //! * `planar_element`, `spatial_element`: one element's forces and tangent;
 //! * `sampling`: position and slope at any material coordinate.
 //!
@@ -18,10 +19,11 @@
 //!   an arc without stretching; fully integrated, that parasitic strain stiffens thin strands
 //!   (membrane locking: EA l^2 / EI is of order 10^3-10^7 here). With 3 points the tip error
 //!   of the q L^3/EI = 5 elastica at 16 elements and EA L^2/EI = 1e7 is 3.9e-4 L (order 2.5);
-//!   with 2 points it is 1.2e-6 L (order 3.5) (`tests/statics.rs`). The strain used by the
-//!   section law for the wire tension is the assumed field `eps_bar`, linear through the two
-//!   axial points, so the friction limits see the strand's tension, not the parasitic strain.
-//!   The one zero-energy mode that two points leave is held by a weak penalty ([`HOURGLASS`]).
+//!   with 2 points it is 1.2e-6 L (order 3.5) (`tests/statics.rs`). The one zero-energy mode
+//!   that two points leave is held by a weak penalty ([`HOURGLASS`]). The strain the section
+//!   law reads for the wires' friction limits is recovered from the element means (module
+//!   `strain_recovery`): the line through the two points carries EA times the element's
+//!   parasitic stretch.
 //! * Bending term: the wire phases turn once per pitch P, and each wire switches between stick
 //!   and slip inside an element longer than P/2, so the default rule is composite: 3 Gauss points
 //!   on each of `ceil(4 l / P)` equal sub-intervals (a sub-interval spans at most a quarter
@@ -34,6 +36,7 @@ mod planar_element;
 mod quadrature;
 mod sampling;
 mod spatial_element;
+mod strain_recovery;
 mod supports;
 
 use nalgebra::{DMatrix, Vector3};
@@ -119,7 +122,8 @@ pub enum BeamError {
 pub struct PointState {
     /// Material coordinate (m).
     pub x: f64,
-    /// Assumed axial strain.
+    /// Axial strain the section law reads (module `strain_recovery`): EA times it is the
+    /// tension of `centerline.csv`.
     pub eps: f64,
     /// Curvature `kappa_z` (1/m): the signed curvature of a planar element.
     pub kappa: f64,

@@ -21,6 +21,7 @@ impl Beam {
         e: usize,
         rule: &ElementRule,
         qe: &PlanarCoords,
+        means: &[f64; 2],
         slip: &[f64],
         trial: &mut [f64],
         mut tangent: Option<&mut PlanarMatrix>,
@@ -85,7 +86,7 @@ impl Beam {
         // Bending points.
         let ws = self.state_per_point();
         for (i, bp) in rule.bend.iter().enumerate() {
-            let eps: f64 = (0..AXIAL_POINTS).map(|j| bp.interp[j] * eps_a[j]).sum();
+            let eps = bp.strain(&eps_a, means);
             let pt = PlanarPoint::at(qe, &bp.qp.row);
             // Empty for a law without state (ws = 0).
             let (sl, tr) = (
@@ -112,7 +113,8 @@ impl Beam {
                 planar::add_hessian_lower(t, w, &bp.qp.row, &h);
                 if r.moment_strain != 0.0 {
                     // d M / d eps_bar couples the curvature here to the axial points:
-                    // w M_eps kappa_q eps_bar_q^T with eps_bar_q = sum_j interp_j eps_q[j].
+                    // w M_eps kappa_q eps_bar_q^T with eps_bar_q = sum_j interp_j eps_q[j] (the
+                    // own element's part of the strain the law reads).
                     // Summed per axial point j over the bending points, then one rank-one
                     // update per axial point for the element.
                     let c = w * r.moment_strain;
@@ -153,11 +155,13 @@ impl Beam {
     /// gradients are folded into the scatter of each point's own force, so every point is
     /// mapped to the element coordinates once. This is the evaluation of every Newton
     /// iteration that keeps its matrix and of every explicit step.
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn planar_forces(
         &self,
         e: usize,
         rule: &ElementRule,
         qe: &PlanarCoords,
+        means: &[f64; 2],
         slip: &[f64],
         trial: &mut [f64],
         mut points: Option<&mut [PointState]>,
@@ -210,7 +214,7 @@ impl Beam {
                 }
             }
             let BendKinematics { kappa, ka, kb, .. } = kin_pts[lane];
-            let eps: f64 = (0..AXIAL_POINTS).map(|j| bp.interp[j] * eps_a[j]).sum();
+            let eps = bp.strain(&eps_a, means);
             // Empty for a law without state (ws = 0).
             let (sl, tr) = (
                 &slip[i * ws..(i + 1) * ws],

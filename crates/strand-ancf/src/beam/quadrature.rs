@@ -3,6 +3,7 @@
 
 use strand_core::{SectionLaw, Station};
 
+use super::strain_recovery::recovery_weights;
 use super::{AXIAL_POINTS, BeamError, BeamSpec};
 use crate::shape::{QuadraturePoint, ShapeRow, element_quadrature, gauss_legendre};
 
@@ -11,8 +12,11 @@ use crate::shape::{QuadraturePoint, ShapeRow, element_quadrature, gauss_legendre
 pub(crate) struct BendPoint {
     pub qp: QuadraturePoint,
     pub station: Station,
-    /// Lagrange weights of the axial points at this point (assumed strain).
+    /// Weights of the element's own axial-point strains in the strain the section law reads
+    /// here (module `strain_recovery`).
     pub interp: [f64; AXIAL_POINTS],
+    /// Weights of the mean strains of the elements [`ElementRule::others`].
+    pub others: [f64; 2],
 }
 
 /// Quadrature of one element (all elements have the same length but different stations).
@@ -22,6 +26,8 @@ pub(crate) struct ElementRule {
     /// Shape row at the element midpoint (hourglass stabilization).
     pub mid: ShapeRow,
     pub bend: Vec<BendPoint>,
+    /// The two other elements whose mean strains enter the strain the section law reads.
+    pub others: [usize; 2],
 }
 
 /// Bending integration points of element `e`: the pitch rule or the scene's Gauss rule.
@@ -54,16 +60,12 @@ pub(super) fn element_rule(
         }
     }
     let xa: Vec<f64> = axial.iter().map(|a| a.row.x).collect();
+    let mut others = [0; 2];
     let bend = pts
         .into_iter()
         .map(|(x, weight)| {
-            // Lagrange polynomial through the axial points.
-            let interp = std::array::from_fn(|j| {
-                (0..AXIAL_POINTS)
-                    .filter(|&k| k != j)
-                    .map(|k| (x - xa[k]) / (xa[j] - xa[k]))
-                    .product()
-            });
+            let (interp, idx, w) = recovery_weights(e, spec.elements, x, l, &xa);
+            others = idx;
             BendPoint {
                 qp: QuadraturePoint {
                     weight,
@@ -71,6 +73,7 @@ pub(super) fn element_rule(
                 },
                 station: law.station(x0 + x),
                 interp,
+                others: w,
             }
         })
         .collect();
@@ -78,5 +81,6 @@ pub(super) fn element_rule(
         axial,
         mid: ShapeRow::new(0.5 * l, l),
         bend,
+        others,
     })
 }

@@ -16,6 +16,7 @@ impl Beam {
         e: usize,
         rule: &ElementRule,
         qe: &SpatialCoords,
+        means: &[f64; 2],
         slip: &[f64],
         trial: &mut [f64],
         mut tangent: Option<&mut SpatialMatrix>,
@@ -90,7 +91,7 @@ impl Beam {
         }
         let ws = self.state_per_point();
         for (i, bp) in rule.bend.iter().enumerate() {
-            let eps: f64 = (0..AXIAL_POINTS).map(|j| bp.interp[j] * eps_a[j]).sum();
+            let eps = bp.strain(&eps_a, means);
             let pt = SpatialPoint::at(qe, &bp.qp.row);
             // Empty for a law without state (ws = 0).
             let (sl, tr) = (
