@@ -10,6 +10,7 @@ mod hard;
 mod paper;
 mod pareto;
 mod plot;
+mod stiffness;
 mod validate;
 
 #[derive(Parser)]
@@ -41,6 +42,11 @@ enum Task {
     /// in interleaved runs, with the trajectories checked against each other;
     /// target/bench-peers/.
     BenchPeers(bench_peers::BenchPeersArgs),
+    /// The section laws' K_min (Costello's wire stiffness) against the fine model: the
+    /// frictionless bending test over lay angles and frictionless cantilevers on strands that
+    /// are not the paper's, each converged in segments per pitch; target/stiffness/. Fails on
+    /// any failed check.
+    Stiffness(stiffness::StiffnessArgs),
 }
 
 fn main() -> anyhow::Result<()> {
@@ -51,7 +57,23 @@ fn main() -> anyhow::Result<()> {
         Task::Paper(args) => paper::run(&args),
         Task::Pareto(args) => pareto::run(&args),
         Task::BenchPeers(args) => bench_peers::run(&args),
+        Task::Stiffness(args) => stiffness_and_exit(&args),
     }
+}
+
+/// Runs the base-stiffness study, prints the table and exits with status 1 on a failed check.
+fn stiffness_and_exit(args: &stiffness::StiffnessArgs) -> anyhow::Result<()> {
+    let report = stiffness::run(args)?;
+    print!("{}", report.table());
+    if report.failed() {
+        let names: Vec<String> = report
+            .failures()
+            .map(|r| format!("{} {} {}", r.scene, r.check, r.metric))
+            .collect();
+        eprintln!("stiffness study failed: {}", names.join("; "));
+        std::process::exit(1);
+    }
+    Ok(())
 }
 
 /// Runs the hard cases, prints the table and exits with status 1 when a criterion failed.

@@ -46,6 +46,40 @@ pub struct BendingTest {
     pub max_halvings: usize,
 }
 
+impl BendingTest {
+    /// The frictionless test of the all-slip stiffness K_min: one curvature `kappa` (1/m) at
+    /// the tension `tension` (N), `segments_per_pitch` over `pitches` pitches, default contacts.
+    ///
+    /// Keep the tension low: the frictionless fine strand softens with tension, which the thin-
+    /// rod K_min (`strand_core::wire_bending`) leaves out. Measured on the Table 1 geometry at
+    /// 35 deg: M / kappa 1.0005, 1.0003, 0.9987, 0.9830 times Costello's K_min at T = 0.01,
+    /// 0.1, 1, 10 N (about -0.16 % per newton; -0.21 % at 20 deg), while the curvature (0.1 or
+    /// 1 1/m) and the length (3 or 6 pitches) change it by under 1e-4.
+    pub fn frictionless(
+        pitches: usize,
+        segments_per_pitch: usize,
+        tension: f64,
+        kappa: f64,
+    ) -> BendingTest {
+        BendingTest {
+            pitches,
+            segments_per_pitch,
+            tension,
+            curvatures: vec![kappa],
+            contact: ContactOptions::default(),
+            friction: 0.0,
+            statics: StaticOptions {
+                load_steps: 1,
+                tolerance: 1e-8,
+                max_iterations: 60,
+                force_scale: Some(tension),
+                ..Default::default()
+            },
+            max_halvings: 6,
+        }
+    }
+}
+
 /// One measured point of the moment-curvature curve.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BendingPoint {

@@ -1,0 +1,311 @@
+//! `cargo xtask stiffness`: the section laws' all-slip stiffness K_min (Costello's thin-rod
+//! wire stiffness, `strand_core::wire_bending`) against the fine model, converged in its
+//! segments per pitch.
+//!
+//! * Bending: the frictionless virtual bending test (`strand_fine::BendingTest::frictionless`,
+//!   T = 0.1 N, kappa = 0.1 1/m, six pitches) of the Table 1 geometry at lay angles 5, 15, 25,
+//!   35 deg, 12 to 96 segments per pitch: M / kappa within 1 % of K_min at the finest, which
+//!   must be within 2e-3 of the one before (the fine model's own error well below 1 %).
+//! * Cantilevers: the frictionless strands of `validation/stiffness/` (not the paper's: other
+//!   lay angles, diameters, moduli, wire counts), clamped under gravity, statics. The fine
+//!   model at 5, 10, 20 segments per pitch, its error at the finest estimated from the three
+//!   (Richardson with the observed order) and required below 2.5e-4 L; the equivalent model at
+//!   32 and 64 elements with each base stiffness; the default (Costello) at 64 elements within
+//!   1e-3 L of the fine model's finest tip.
+//!
+//! It prints one table and writes `target/stiffness/report.{md,json}`; `--quick` runs the
+//! bending test at 12 and 24 segments per pitch only (seconds).
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::Context;
+use strand_core::{BaseStiffness, SectionOptions, Strand, StrandSpec};
+use strand_fine::BendingTest;
+use strand_scene::format::{BeamModelFile, FineModelFile, ModelsFile, SectionFile};
+use strand_scene::{RunOptions, Scene, run_scene};
+
+use crate::validate::machine::Provenance;
+use crate::validate::repo_root;
+use crate::validate::report::{Bound, Report, Row};
+
+/// Options of `cargo xtask stiffness`.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct StiffnessArgs {
+    /// Only the bending test at 12 and 24 segments per pitch.
+    #[arg(long)]
+    pub quick: bool,
+    /// Folder of the report and the runs [default: target/stiffness].
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+}
+
+/// Lay angles of the bending test (deg).
+const LAY_ANGLES: [f64; 4] = [5.0, 15.0, 25.0, 35.0];
+/// K_min against the converged bending test: the issue's figure.
+const BENDING_TOL: f64 = 1e-2;
+/// The fine model's change between its two finest meshes, a fifth of `BENDING_TOL`.
+const BENDING_CONVERGED: f64 = 2e-3;
+/// Tip of the equivalent model against the fine model (of L): the issue's figure.
+const TIP_TOL: f64 = 1e-3;
+/// The fine model's estimated error at its finest mesh (of L), a quarter of `TIP_TOL`.
+const FINE_ERROR: f64 = 2.5e-4;
+/// Segments per pitch of the fine cantilevers.
+const FINE_SPP: [f64; 3] = [5.0, 10.0, 20.0];
+/// Elements of the equivalent cantilevers.
+const ELEMENTS: [usize; 2] = [32, 64];
+
+/// Runs the study and writes the report; the caller decides the exit status.
+pub fn run(args: &StiffnessArgs) -> anyhow::Result<Report> {
+    let t0 = Instant::now();
+    let root = repo_root();
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| root.join("target").join("stiffness"));
+    let mut rows = bending(args.quick)?;
+    if !args.quick {
+        let dir = root.join("validation").join("stiffness");
+        let mut names: Vec<PathBuf> = std::fs::read_dir(&dir)
+            .with_context(|| format!("listing {}", dir.display()))?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.extension().is_some_and(|e| e == "json"))
+            .collect();
+        names.sort();
+        for path in names {
+            let scene =
+                Scene::load(&path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+            rows.extend(cantilever(&scene, &out.join("runs").join(&scene.name))?);
+        }
+    }
+    let report = Report::new(
+        Provenance::detect(&root),
+        args.quick,
+        t0.elapsed().as_secs_f64(),
+        rows,
+    )
+    .titled("Base stiffness report", "study", "xtask/src/stiffness.rs");
+    report.write(&out)?;
+    Ok(report)
+}
+
+/// The Table 1 strand (core 3 mm, six 2 mm wires, E = 2e8 Pa, nu = 0.3) at lay angle `deg`,
+/// without friction.
+fn table1_at(deg: f64) -> anyhow::Result<Strand> {
+    let mut spec = StrandSpec::paper(1.0, 2.0e8, 7801.0);
+    spec.layers[0].lay_angle = deg.to_radians();
+    spec.friction = 0.0;
+    Ok(Strand::new(spec)?)
+}
+
+/// The bending rows: per lay angle, M / kappa over K_min at each mesh, then the checks.
+fn bending(quick: bool) -> anyhow::Result<Vec<Row>> {
+    let spp: &[usize] = if quick { &[12, 24] } else { &[12, 24, 48, 96] };
+    let mut rows = Vec::new();
+    for deg in LAY_ANGLES {
+        let s = table1_at(deg)?;
+        let scene = format!("bending {deg} deg");
+        let k_min = |b: BaseStiffness| s.min_bending_stiffness(b);
+        let mut k = Vec::new();
+        for &n in spp {
+            let t = Instant::now();
+            let curve = BendingTest::frictionless(6, n, 0.1, 0.1)
+                .run(&s)
+                .with_context(|| format!("{scene}, {n} segments per pitch"))?;
+            let m = curve.last().expect("one curvature").secant_stiffness();
+            eprintln!(
+                "{scene}: {n} segments per pitch, {:.1} s",
+                t.elapsed().as_secs_f64()
+            );
+            rows.push(
+                Row::measured(
+                    &scene,
+                    "K/K_min",
+                    &format!("spp={n}"),
+                    m / k_min(BaseStiffness::Costello),
+                    "",
+                    Bound::None,
+                )
+                .with_note(format!(
+                    "M/kappa {m:.5e} N m^2; over Foti's K_min {:.4}, Papailiou's {:.4}, the \
+                     paper's {:.4}",
+                    m / k_min(BaseStiffness::Foti),
+                    m / k_min(BaseStiffness::Papailiou),
+                    m / k_min(BaseStiffness::Paper)
+                )),
+            );
+            k.push(m);
+        }
+        let (fine, prev) = (k[k.len() - 1], k[k.len() - 2]);
+        let mut conv = Row::measured(
+            &scene,
+            "fine-convergence",
+            "change",
+            (fine - prev).abs() / fine,
+            "",
+            Bound::AtMost(BENDING_CONVERGED),
+        );
+        conv.why = "the fine model's change between its two finest meshes, a fifth of the 1 % \
+                    claim"
+            .into();
+        rows.push(conv);
+        let mut row = Row::measured(
+            &scene,
+            "K_min",
+            "costello",
+            (fine / k_min(BaseStiffness::Costello) - 1.0).abs(),
+            "",
+            Bound::AtMost(BENDING_TOL),
+        );
+        row.why = "K_min of the section laws within 1 % of the converged frictionless bending \
+                   test (issue 15)"
+            .into();
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
+/// Tip (x, y, z) of `scene` run with `models` and the section `base` into `dir`.
+fn tip(
+    scene: &Scene,
+    models: ModelsFile,
+    base: Option<BaseStiffness>,
+    dir: &std::path::Path,
+) -> anyhow::Result<[f64; 3]> {
+    let mut file = scene.file.clone();
+    file.models = models;
+    if let Some(b) = base {
+        file.section = Some(SectionFile {
+            base_stiffness: Some(b.name().into()),
+        });
+    }
+    let s = Scene::from_file(file).map_err(|e| anyhow::anyhow!("{}: {e}", scene.name))?;
+    let opts = RunOptions {
+        out: dir.to_path_buf(),
+        vtk: false,
+    };
+    let t = Instant::now();
+    let summary = run_scene(&s, &opts, &mut |_, _| {})
+        .with_context(|| format!("{} into {}", scene.name, dir.display()))?;
+    eprintln!(
+        "{}: {} in {:.1} s",
+        scene.name,
+        dir.display(),
+        t.elapsed().as_secs_f64()
+    );
+    Ok(summary[0].tip)
+}
+
+fn distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// The cantilever rows of one scene: the fine model's tips and its convergence, then the
+/// equivalent model's tip with each base stiffness against the finest.
+fn cantilever(scene: &Scene, out: &std::path::Path) -> anyhow::Result<Vec<Row>> {
+    let name = &scene.name;
+    let strand = &scene.strand;
+    let l = strand.length();
+    let pitch = strand.layer().context("a stranded scene")?.pitch;
+    let penetration = scene.file.models.fine.as_ref().and_then(|f| f.penetration);
+    let mut rows = Vec::new();
+    let mut fine = Vec::new();
+    for spp in FINE_SPP {
+        let segments = (spp * l / pitch).round().max(2.0) as i64;
+        let models = ModelsFile {
+            fine: Some(FineModelFile {
+                segments_per_wire: segments,
+                penetration,
+                bind_free_end: None,
+            }),
+            ..Default::default()
+        };
+        let t = tip(scene, models, None, &out.join(format!("fine-{segments}")))?;
+        fine.push((segments, t));
+    }
+    let finest = fine[fine.len() - 1].1;
+    for (segments, t) in &fine {
+        rows.push(
+            Row::measured(
+                name,
+                "fine-tip",
+                &format!("segments={segments}"),
+                distance(t, &finest) / l,
+                "L",
+                Bound::None,
+            )
+            .with_note(format!(
+                "{:.2} segments per pitch; tip ({:.6}, {:.6}, {:.6}) m, distance to the finest",
+                *segments as f64 * pitch / l,
+                t[0],
+                t[1],
+                t[2]
+            )),
+        );
+    }
+    // Richardson: the finest's error from the last two differences and their observed order.
+    let (d1, d2) = (
+        distance(&fine[0].1, &fine[1].1),
+        distance(&fine[1].1, &fine[2].1),
+    );
+    let order = (d1 / d2).log2().clamp(1.0, 4.0);
+    let estimate = d2 / (2f64.powf(order) - 1.0);
+    let mut row = Row::measured(
+        name,
+        "fine-error",
+        "finest",
+        estimate / l,
+        "L",
+        Bound::AtMost(FINE_ERROR),
+    )
+    .with_note(format!(
+        "differences {d1:.3e}, {d2:.3e} m between the meshes (order {:.2}, used {order:.2})",
+        (d1 / d2).log2()
+    ));
+    row.why = "the fine model's own error at its finest mesh, a quarter of the 1e-3 L claim".into();
+    rows.push(row);
+    for base in BaseStiffness::ALL {
+        let mut tips = Vec::new();
+        for n in ELEMENTS {
+            let models = ModelsFile {
+                equivalent: Some(BeamModelFile {
+                    elements: n as i64,
+                    integration_points: None,
+                    mass_per_length: None,
+                }),
+                ..Default::default()
+            };
+            let dir = out.join(format!("equivalent-{base}-{n}"));
+            tips.push(tip(scene, models, Some(base), &dir)?);
+        }
+        let t = tips[tips.len() - 1];
+        let bound = if base == SectionOptions::default().base_stiffness {
+            Bound::AtMost(TIP_TOL)
+        } else {
+            Bound::None
+        };
+        let mut row = Row::measured(
+            name,
+            "equivalent-vs-fine",
+            &format!("{base} tip"),
+            distance(&t, &finest) / l,
+            "L",
+            bound,
+        )
+        .with_note(format!(
+            "{} elements: tip ({:.6}, {:.6}) m; {} elements {:.1e} L away",
+            ELEMENTS[1],
+            t[0],
+            t[1],
+            ELEMENTS[0],
+            distance(&tips[0], &t) / l
+        ));
+        if bound != Bound::None {
+            row.why = "the equivalent model's tip within 1e-3 L of the converged fine model \
+                       (issue 15)"
+                .into();
+        }
+        rows.push(row);
+    }
+    Ok(rows)
+}
