@@ -11,10 +11,13 @@
 //!   gives the trapezoidal rule (no numerical damping).
 //!
 //! Energy accounting (SPEC 2): kinetic `1/2 v^T M v`, gravity `-Q_g . (q - q_0)`, elastic (the
-//! section laws' stored energy), and dissipated: the hysteretic law's slip work plus the work
-//! of the non-potential part of the stick/slip laws, `-energy_strain d eps` at every bending
-//! point (midpoint rule over each accepted step). Their sum stays at its initial value up to
-//! the integrator's own error, which is reported as the balance error.
+//! section laws' stored energy), dissipated (the hysteretic law's slip work, never negative),
+//! and the work the non-potential part of the `continuous` and `paper` laws has done on the
+//! strand, `energy_strain d eps` at every bending point (midpoint rule over each accepted
+//! step; positive when it puts energy in). Kinetic + gravity + elastic + dissipated - that
+//! work stays at its initial value up to the integrator's own error, reported as the balance
+//! error. The non-potential work is kept apart from the dissipation so that energy a law puts
+//! in cannot pass for negative dissipation.
 
 use crate::band::{BandMatrix, BandSolver};
 use crate::beam::{Beam, BeamError, PointState};
@@ -108,14 +111,18 @@ pub struct Energies {
     pub gravity: f64,
     /// Stored elastic energy.
     pub elastic: f64,
-    /// Work dissipated so far (slip and the non-potential part of the law).
+    /// Work dissipated so far by slip (hysteretic law; never negative).
     pub dissipated: f64,
+    /// Work done on the strand so far by the non-potential part of the `continuous` and
+    /// `paper` laws (positive: energy put in).
+    pub non_potential: f64,
 }
 
 impl Energies {
-    /// Kinetic + gravity + elastic + dissipated: constant up to the integrator's error.
+    /// Kinetic + gravity + elastic + dissipated - non-potential work: constant up to the
+    /// integrator's error.
     pub fn total(&self) -> f64 {
-        self.kinetic + self.gravity + self.elastic + self.dissipated
+        self.kinetic + self.gravity + self.elastic + self.dissipated - self.non_potential
     }
 }
 
@@ -210,13 +217,13 @@ pub enum DynamicError {
     Setup(String),
 }
 
-/// Work dissipated over a step by the non-potential part of the stick/slip laws (J):
-/// `-energy_strain d eps` at every bending point between the states `old` and `new`
-/// (midpoint rule, SPEC 2).
+/// Work done on the strand over a step by the non-potential part of the stick/slip laws (J,
+/// positive when it puts energy in): `energy_strain d eps` at every bending point between the
+/// states `old` and `new` (midpoint rule, SPEC 2).
 pub fn non_potential_work(old: &[PointState], new: &[PointState]) -> f64 {
     old.iter()
         .zip(new)
-        .map(|(a, b)| -0.5 * a.weight * (a.energy_strain + b.energy_strain) * (b.eps - a.eps))
+        .map(|(a, b)| 0.5 * a.weight * (a.energy_strain + b.energy_strain) * (b.eps - a.eps))
         .sum()
 }
 
@@ -224,6 +231,7 @@ pub fn non_potential_work(old: &[PointState], new: &[PointState]) -> f64 {
 struct Ledger {
     q0_gravity: f64,
     dissipated: f64,
+    non_potential: f64,
     e0: f64,
     balance_error: f64,
     max_kinetic: f64,
@@ -240,6 +248,7 @@ impl Ledger {
         Ledger {
             q0_gravity: potential,
             dissipated: 0.0,
+            non_potential: 0.0,
             e0,
             balance_error: 0.0,
             max_kinetic: 0.0,
@@ -254,9 +263,11 @@ impl Ledger {
             - self.q0_gravity
     }
 
-    /// Adds the dissipation of an accepted step from the bending-point states.
+    /// Adds the slip work and the non-potential work of an accepted step (from the
+    /// bending-point states).
     fn dissipate(&mut self, slip_work: f64, old: &[PointState], new: &[PointState]) {
-        self.dissipated += slip_work + non_potential_work(old, new);
+        self.dissipated += slip_work;
+        self.non_potential += non_potential_work(old, new);
     }
 
     fn energies(
@@ -276,6 +287,7 @@ impl Ledger {
             gravity: self.gravity(beam, q),
             elastic,
             dissipated: self.dissipated,
+            non_potential: self.non_potential,
         };
         self.balance_error = self.balance_error.max((e.total() - self.e0).abs());
         self.max_kinetic = self.max_kinetic.max(kinetic);
@@ -786,7 +798,8 @@ fn generalized_alpha(
             law: beam.law().kind().name(),
         })?;
         newton_iterations += out.iterations;
-        ledger.dissipated += out.slip_work + out.non_potential;
+        ledger.dissipated += out.slip_work;
+        ledger.non_potential += out.non_potential;
         en = ledger.energies(beam, t, &st.q, &st.vf, &mut w.mv, out.elastic);
         if t >= next_out - 1e-9 * h || step == n_steps {
             scatter_velocity(beam, &st.vf, &mut v);

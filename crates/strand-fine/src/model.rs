@@ -107,7 +107,7 @@ impl Wire {
 
     /// Adds loads at `poses` from joints, anchors, the gravity field `gravity` (m/s^2) and
     /// the external forces times `load_factor` to `loads`; returns (spring energy, potential
-    /// of gravity and external forces) in J.
+    /// of gravity and external forces relative to the rest configuration) in J.
     fn add_loads(
         &self,
         poses: &[Pose],
@@ -125,15 +125,18 @@ impl Wire {
             spring += l.energy;
         }
         let mut potential = 0.0;
+        // Potentials from the rest configuration: zero at the initial (straight) state
+        // whatever the direction of gravity.
+        let rest = &self.chain.rest;
         for (k, s) in self.chain.segments.iter().enumerate() {
             let w = gravity * s.mass;
             loads.forces[k] += w;
-            potential -= w.dot(&poses[k].position);
+            potential -= w.dot(&(poses[k].position - rest[k].position));
         }
         for (k, f) in self.external.iter().enumerate() {
             let f = f * load_factor;
             loads.forces[k] += f;
-            potential -= f.dot(&poses[k].position);
+            potential -= f.dot(&(poses[k].position - rest[k].position));
         }
         (spring, potential)
     }
@@ -514,7 +517,7 @@ pub struct WireLoads {
     pub torques: Vec<Vector3<f64>>,
     /// Elastic energy of the wire's joints and anchors (J).
     pub spring_energy: f64,
-    /// Potential of gravity and external forces, -sum F . x (J).
+    /// Potential of gravity and external forces, -sum F . (x - x_rest) (J).
     pub gravity_energy: f64,
     /// Trial contact results of this wire's contact points.
     pub contacts: Vec<ContactLoad>,
@@ -533,7 +536,7 @@ pub struct Energies {
     pub kinetic_translation: f64,
     /// Rotational kinetic energy.
     pub kinetic_rotation: f64,
-    /// Gravity potential relative to the origin.
+    /// Gravity potential relative to the rest configuration (zero at the initial state).
     pub gravity: f64,
     /// Elastic energy of joints and supports.
     pub spring: f64,
@@ -620,6 +623,52 @@ mod tests {
         assert!(t <= 1e-12 * t0, "torque {t} vs {t0}");
         let e = m.energies(&state, &mut loads);
         assert!(e.spring.abs() < 1e-20, "{}", e.spring);
+    }
+
+    /// The potential energies (gravity, joints, contacts, stick springs) are zero at the rest
+    /// state whatever the direction of gravity (a scene's strand may start along any
+    /// direction: the runner turns gravity into the model's frame), and gravity's measures the
+    /// work of the weight from there.
+    #[test]
+    fn potentials_start_at_zero_at_rest_for_any_gravity() {
+        let mut m = paper_model();
+        m.add_contacts(&table1(), &crate::contact::ContactOptions::default());
+        m.gravity = Vector3::new(3.0, -7.0, 5.0);
+        let mut state = m.rest_state();
+        let mut loads = m.load_buffers();
+        let e = m.energies(&state, &mut loads);
+        let weight: f64 = m
+            .wires
+            .iter()
+            .flat_map(|w| &w.chain.segments)
+            .map(|s| s.mass)
+            .sum::<f64>()
+            * m.gravity.norm();
+        // The weight's work over the strand length (0.4 m).
+        let scale = weight * 0.4;
+        for (name, v) in [
+            ("gravity", e.gravity),
+            ("spring", e.spring),
+            ("contact", e.contact),
+            ("stick springs", e.friction_stored),
+        ] {
+            assert!(v.abs() <= 1e-12 * scale, "{name}: {v} J at rest");
+        }
+        // Translating every segment by d lowers the potential by the weight's work.
+        let d = Vector3::new(0.01, 0.02, -0.03);
+        for w in &mut state.wires {
+            for p in &mut w.poses {
+                p.position += d;
+            }
+        }
+        let e = m.energies(&state, &mut loads);
+        let work = weight / m.gravity.norm() * m.gravity.dot(&d);
+        assert!(
+            (e.gravity + work).abs() <= 1e-12 * work.abs(),
+            "{} vs {}",
+            e.gravity,
+            -work
+        );
     }
 
     #[test]

@@ -1,7 +1,8 @@
 //! Statics with contacts and friction ([`strand_fine::solve_settled`]): a short Table 1
 //! strand clamped horizontally under gravity reaches rest within the stated residual, and its
 //! tip deflection lies between those of the all-slip (K_min) and all-stick (K_max) elastica
-//! (constant EI, inextensible: the independent shooting solution).
+//! (constant EI, inextensible: the independent shooting solution), up to the segment chain's
+//! own discretisation error.
 
 use nalgebra::Vector3;
 use strand_core::{BaseStiffness, Strand, StrandSpec};
@@ -61,9 +62,16 @@ fn short_strand_settles_between_the_all_slip_and_all_stick_elastica() {
         drop(strand.max_bending_stiffness(BaseStiffness::default())),
         drop(strand.min_bending_stiffness(BaseStiffness::default())),
     );
+    // A chain of rigid segments deflects more than the continuum of the same stiffness, at
+    // second order in the segment length: 1.00e-2, 2.52e-3 of q L^4 / 8 EI at 10, 20 segments
+    // (tests/cantilever.rs), so (10/12)^2 1.0 % at 12. The all-slip bound of this chain is the
+    // elastica's drop with that allowance (measured: 9e-4 beyond Costello's K_min elastica).
+    let chain = 1.0e-2 * (10.0f64 / 12.0).powi(2);
     println!(
-        "tip drop {:.6} m; all-stick {stick:.6} m, all-slip {slip:.6} m",
-        -tip.y
+        "tip drop {:.6} m; all-stick {stick:.6} m, all-slip {slip:.6} m ({:+.1e}; the chain's \
+         allowance {chain:.1e})",
+        -tip.y,
+        -tip.y / slip - 1.0
     );
-    assert!(-tip.y > stick && -tip.y < slip);
+    assert!(-tip.y > stick && -tip.y < slip * (1.0 + chain));
 }

@@ -145,6 +145,7 @@ pub(crate) fn run_beam(
         energy_balance_error: None,
         energy_balance_relative: None,
         dissipated: None,
+        non_potential_work: None,
         built,
         warnings: Vec::new(),
     };
@@ -293,7 +294,7 @@ fn run_dynamics(
     summary: &mut RunSummary,
     progress: &mut dyn FnMut(f64),
 ) -> Result<(), String> {
-    let mut files = FrameFiles::create(dir, vtk, &[])?;
+    let mut files = FrameFiles::create(dir, vtk, &["non_potential"])?;
     let n = beam.spec().elements;
     let nd = beam.node_coords();
     let k = n * nd;
@@ -311,7 +312,14 @@ fn run_dynamics(
         let (mut x, mut v) = ([0.0; 3], [0.0; 3]);
         x[..dim].copy_from_slice(&f.q[k..k + dim]);
         v[..dim].copy_from_slice(&f.v[k..k + dim]);
-        let energies = [e.kinetic, e.gravity, e.elastic, e.dissipated, e.total()];
+        let energies = [
+            e.kinetic,
+            e.gravity,
+            e.elastic,
+            e.dissipated,
+            e.total(),
+            e.non_potential,
+        ];
         let centreline = || {
             let samples = 4 * n;
             (0..=samples)
@@ -343,6 +351,18 @@ fn run_dynamics(
     summary.energy_balance_error = Some(s.balance_error);
     summary.energy_balance_relative = Some(s.balance_error / s.max_kinetic.max(f64::MIN_POSITIVE));
     summary.dissipated = Some(s.last.dissipated);
+    summary.non_potential_work = Some(s.last.non_potential);
+    // Above round-off of the energy sums: the law has put energy into the strand.
+    if s.last.non_potential > 1e-9 * s.max_kinetic {
+        summary.warnings.push(format!(
+            "the `{}` law put {:.3e} J into the strand ({:.2e} of the largest kinetic energy): \
+             the work of its non-potential part (energy.csv `non_potential`) is positive; the \
+             motion is not physical; use `hysteretic`",
+            beam.law().kind(),
+            s.last.non_potential,
+            s.last.non_potential / s.max_kinetic.max(f64::MIN_POSITIVE)
+        ));
+    }
     let relative = s.balance_error / s.max_kinetic.max(f64::MIN_POSITIVE);
     if relative > BALANCE_WARNING {
         summary.warnings.push(format!(

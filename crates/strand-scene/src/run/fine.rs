@@ -139,6 +139,7 @@ pub(crate) fn run_fine(
         energy_balance_error: None,
         energy_balance_relative: None,
         dissipated: None,
+        non_potential_work: None,
         built,
         warnings,
     };

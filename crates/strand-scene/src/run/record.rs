@@ -50,12 +50,16 @@ pub struct RunSummary {
     pub time_step: Option<f64>,
     /// Estimated stable step of the explicit integrator (s, runs of the explicit integrator).
     pub stable_time_step: Option<f64>,
-    /// Largest |kinetic + gravity + elastic + dissipated - initial| (J, dynamics).
+    /// Largest |kinetic + gravity + elastic + dissipated - non-potential work - initial| (J,
+    /// dynamics).
     pub energy_balance_error: Option<f64>,
     /// The balance error relative to the largest kinetic energy (dynamics).
     pub energy_balance_relative: Option<f64>,
-    /// Work dissipated at the end (J, dynamics).
+    /// Work dissipated at the end (J, dynamics): slip (beam models) or friction (fine model).
     pub dissipated: Option<f64>,
+    /// Work done on the strand by the non-potential part of the `continuous` and `paper` laws
+    /// at the end (J, beam dynamics; positive: energy put in, not part of `dissipated`).
+    pub non_potential_work: Option<f64>,
     /// What was built for this run.
     pub built: Vec<String>,
     /// Warnings.
