@@ -24,11 +24,11 @@
 //! [`BaseStiffness::Costello`], averages the compliances with the same weights instead:
 //! `1 / [ (1 + cos^2 alpha)/2 + (1 + nu) sin^2(alpha)/2 ] = 2 / (2 + nu sin^2 alpha)`, and lies
 //! below Foti's by cos(alpha) nu^2 sin^2(alpha) / (2 (1 + nu)) E I to leading order. With
-//! nu = 0 (torsional and bending stiffness
-//! equal) both reduce to E I cos(alpha), [`BaseStiffness::Papailiou`]; the paper's
-//! E I cos^3(alpha) ([`BaseStiffness::Paper`]) applies the axial loss factor eta = cos^3(alpha)
-//! of eq. (10) to the wire's bending and leaves out the torsion. At alpha -> 0 every form is
-//! E I, the straight wire; they differ at second order in alpha:
+//! nu = 0 (torsional and bending stiffness equal) both reduce to E I cos(alpha),
+//! [`BaseStiffness::Papailiou`]; the paper's E I cos^3(alpha) ([`BaseStiffness::Paper`])
+//! applies the axial loss factor eta = cos^3(alpha) of eq. (10) to the wire's bending and
+//! leaves out the torsion. At alpha -> 0 every form is E I, the straight wire; they differ at
+//! second order in alpha:
 //!
 //! | form | E I times | at 20 deg, nu = 0.3 |
 //! |---|---|---:|
@@ -39,7 +39,8 @@
 //!
 //! Sources: G. A. Costello, *Theory of Wire Rope* (2nd ed., Springer 1997), the bending of a
 //! strand with frictionless wires; F. Foti and L. Martinelli (2016), "An analytical approach to
-//! model the hysteretic bending behavior of spiral strands", Appl. Math. Model. 40, the
+//! model the hysteretic bending behavior of spiral strands" and "Mechanical modeling of
+//! metallic strands subjected to tension, torsion and bending" (Int. J. Solids Struct.), the
 //! all-slip (minimum) bending stiffness, which equals Lehanneur's (1949) E I cos(alpha)
 //! (1 - nu sin^2(alpha) / (2 (1 + nu))); K. O. Papailiou (1997), "On the bending stiffness of
 //! transmission line conductors", IEEE Trans. Power Delivery 12(4), the minimum stiffness

@@ -359,7 +359,7 @@ fn validate_spec(scene: &str, spec: &CheckSpec) -> anyhow::Result<()> {
         CheckSpec::TensionVsElastica(t) => {
             positive(t.relative, &at("relative"))?;
             positive(t.along, &at("along"))?;
-            if !(t.from >= 0.0) {
+            if t.from.is_nan() || t.from < 0.0 {
                 bail!("{}: must be zero or positive, got {}", at("from"), t.from);
             }
             if t.points.is_empty() {
