@@ -90,8 +90,18 @@ fn dynamic_scene_writes_tip_energy_and_vtk() {
     let (h, en) = csv(&dir.join("energy.csv"));
     assert_eq!(
         h,
-        ["t", "kinetic", "gravity", "elastic", "dissipated", "total"]
+        [
+            "t",
+            "kinetic",
+            "gravity",
+            "elastic",
+            "dissipated",
+            "total",
+            "non_potential"
+        ]
     );
+    // The hysteretic law has no non-potential part.
+    assert!(en.iter().all(|r| r[6] == 0.0));
     // Energy balance: total stays at its initial value (zero) to a small fraction of the
     // kinetic energy reached.
     let kmax = en.iter().map(|r| r[1]).fold(0.0, f64::max);
