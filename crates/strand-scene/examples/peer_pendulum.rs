@@ -49,14 +49,26 @@ fn parse() -> Result<Args, String> {
                 }
             })
     };
+    let count = |flag: &str, v: Option<String>| -> Result<usize, String> {
+        v.ok_or(format!("{flag} needs a value"))?
+            .parse::<usize>()
+            .map_err(|e| format!("{flag}: {e} (a whole number of at least 1)"))
+            .and_then(|n| {
+                if n >= 1 {
+                    Ok(n)
+                } else {
+                    Err(format!("{flag}: must be at least 1"))
+                }
+            })
+    };
     while let Some(a) = it.next() {
         match a.as_str() {
             "--law" => law = it.next(),
             "--step" => step = Some(number("--step", it.next())?),
             "--spectral-radius" => rho = number("--spectral-radius", it.next())?,
             "--increment" => increment = Some(number("--increment", it.next())?),
-            "--elements" => elements = Some(number("--elements", it.next())? as usize),
-            "--bending-points" => points = Some(number("--bending-points", it.next())? as usize),
+            "--elements" => elements = Some(count("--elements", it.next())?),
+            "--bending-points" => points = Some(count("--bending-points", it.next())?),
             s if s.starts_with("--") => return Err(format!("unknown option {s}")),
             s => scene = Some(PathBuf::from(s)),
         }
