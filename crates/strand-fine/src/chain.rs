@@ -11,7 +11,7 @@ use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 use strand_core::{HelixLayer, WireSpec};
 
 use crate::joint::{JointSpring, JointStiffness};
-use crate::segment::{Pose, Segment};
+use crate::segment::{Frame, Pose, Segment};
 
 /// Elastic and inertial properties of a round wire's cross-section.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -186,17 +186,18 @@ impl Chain {
         out
     }
 
-    /// Adds the joint loads at poses `poses` to `forces` and `torques` (world axes, N and
-    /// N m) and returns the joints' elastic energy (J).
+    /// Adds the joint loads at poses `poses` (with their frames `frames`) to `forces` and
+    /// `torques` (world axes, N and N m) and returns the joints' elastic energy (J).
     pub fn add_joint_loads(
         &self,
         poses: &[Pose],
+        frames: &[Frame],
         forces: &mut [Vector3<f64>],
         torques: &mut [Vector3<f64>],
     ) -> f64 {
         let mut energy = 0.0;
         for (k, j) in self.joints.iter().enumerate() {
-            let l = j.evaluate(&poses[k], &poses[k + 1]);
+            let l = j.evaluate_in(&poses[k], &frames[k], &poses[k + 1], &frames[k + 1]);
             forces[k] += l.force_a;
             torques[k] += l.torque_a;
             forces[k + 1] += l.force_b;

@@ -22,7 +22,7 @@
 
 use nalgebra::Vector3;
 
-use crate::segment::{Pose, Segment};
+use crate::segment::{Placement, Segment};
 
 /// Penalty and friction parameters of a contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -185,8 +185,8 @@ impl ContactLoad {
 
 /// Index of the core segment whose axis span contains the projection of `point`, searched
 /// from `guess` toward the neighbours (clamped to the chain ends).
-pub fn nearest_core_segment(
-    core: &[Pose],
+pub fn nearest_core_segment<P: Placement>(
+    core: &[P],
     segments: &[Segment],
     point: &Vector3<f64>,
     guess: usize,
@@ -194,7 +194,7 @@ pub fn nearest_core_segment(
     let mut j = guess.min(core.len() - 1);
     let mut last_move = 0i8;
     for _ in 0..core.len() {
-        let s = (point - core[j].position).dot(&core[j].tangent());
+        let s = (point - core[j].centre()).dot(&core[j].tangent());
         let half = 0.5 * segments[j].length;
         // Never step back: in a kinked chain a point can project outside both neighbours.
         if s > half && j + 1 < core.len() && last_move >= 0 {
@@ -211,25 +211,24 @@ pub fn nearest_core_segment(
 }
 
 /// Closest point (m) to `p` on the axis of the core segment at `core` of length `length`.
-pub fn closest_on_axis(p: &Vector3<f64>, core: &Pose, length: f64) -> Vector3<f64> {
+pub fn closest_on_axis<P: Placement>(p: &Vector3<f64>, core: &P, length: f64) -> Vector3<f64> {
     let t = core.tangent();
-    let s = (p - core.position)
-        .dot(&t)
-        .clamp(-0.5 * length, 0.5 * length);
-    core.position + t * s
+    let c = core.centre();
+    let s = (p - c).dot(&t).clamp(-0.5 * length, 0.5 * length);
+    c + t * s
 }
 
 /// Evaluates contact point `cp` of the wire segment at `wire` against core segment `j` at
 /// `cj` (length `core_length`), from the committed `history`, whose anchor sits on the core
 /// segment at `anchor_core` (segment `history.core_segment`, `j` or a neighbour).
-pub fn evaluate_pair(
+pub fn evaluate_pair<W: Placement, C: Placement>(
     cp: &ContactPoint,
     history: &ContactHistory,
-    wire: &Pose,
-    cj: &Pose,
+    wire: &W,
+    cj: &C,
     j: usize,
     core_length: f64,
-    anchor_core: &Pose,
+    anchor_core: &C,
 ) -> ContactLoad {
     let p = wire.point(&cp.offset);
     let q = closest_on_axis(&p, cj, core_length);
@@ -269,13 +268,13 @@ pub fn evaluate_pair(
     };
     let ft = -kt * u_el;
     let f_n = n * fn_;
-    let c = &wire.position;
+    let (c, cc) = (wire.centre(), cj.centre());
     ContactLoad {
         core_segment: j,
         force_wire: f_n + ft,
         torque_wire: (p - c).cross(&f_n) + (aw - c).cross(&ft),
         force_core: -(f_n + ft),
-        torque_core: (q - cj.position).cross(&(-f_n)) + (ac - cj.position).cross(&(-ft)),
+        torque_core: (q - cc).cross(&(-f_n)) + (ac - cc).cross(&(-ft)),
         normal_force: fn_,
         tangential_force: ft,
         state,
@@ -286,8 +285,8 @@ pub fn evaluate_pair(
             core_segment: j,
             closed: true,
             displacement: u_el,
-            on_wire: wire.rotation.inverse_transform_vector(&(x - wire.position)),
-            on_core: cj.rotation.inverse_transform_vector(&(x - cj.position)),
+            on_wire: wire.to_body(&(x - c)),
+            on_core: cj.to_body(&(x - cc)),
         },
     }
 }
@@ -295,11 +294,11 @@ pub fn evaluate_pair(
 /// Evaluates contact point `cp` of the wire segment at `wire` against the core (poses
 /// `core`, segments `core_segments`), pairing it by a local search from the history's core
 /// segment.
-pub fn evaluate(
+pub fn evaluate<P: Placement>(
     cp: &ContactPoint,
     history: &ContactHistory,
-    wire: &Pose,
-    core: &[Pose],
+    wire: &P,
+    core: &[P],
     core_segments: &[Segment],
 ) -> ContactLoad {
     let p = wire.point(&cp.offset);
@@ -319,6 +318,7 @@ pub fn evaluate(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::segment::Pose;
     use nalgebra::UnitQuaternion;
 
     fn point(k: f64) -> ContactPoint {

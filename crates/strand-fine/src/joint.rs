@@ -17,7 +17,7 @@
 
 use nalgebra::{SMatrix, UnitQuaternion, Vector3};
 
-use crate::segment::Pose;
+use crate::segment::{Frame, Pose};
 use crate::so3;
 
 /// Spring constants of one joint.
@@ -92,8 +92,10 @@ impl JointSpring {
 
     /// Gap vector `R_a^T (p_b - p_a)` in `a`'s axes (m).
     fn gap(&self, a: &Pose, b: &Pose) -> Vector3<f64> {
-        let d = b.point(&self.offset_b) - a.point(&self.offset_a);
-        a.rotation.inverse_transform_vector(&d)
+        // The arithmetic of `evaluate_in`, so that the rest pose is exactly relaxed.
+        let (fa, fb) = (Frame::of(a), Frame::of(b));
+        let d = (b.position + fb.matrix * self.offset_b) - (a.position + fa.matrix * self.offset_a);
+        fa.matrix.tr_mul(&d)
     }
 
     /// Rotation vector `log(Q_0^T R_a^T R_b)` (rad), in `b`'s axes.
@@ -108,16 +110,22 @@ impl JointSpring {
 
     /// Forces, torques and energy for bodies at poses `a` and `b`.
     pub fn evaluate(&self, a: &Pose, b: &Pose) -> JointLoad {
-        let arm_a = a.rotation * self.offset_a;
-        let arm_b = b.rotation * self.offset_b;
+        self.evaluate_in(a, &Frame::of(a), b, &Frame::of(b))
+    }
+
+    /// [`JointSpring::evaluate`] with the bodies' frames `fa`, `fb` (their poses' rotation
+    /// matrices) at hand: a wire's segments share theirs between two joints and contacts.
+    pub fn evaluate_in(&self, a: &Pose, fa: &Frame, b: &Pose, fb: &Frame) -> JointLoad {
+        let arm_a = fa.matrix * self.offset_a;
+        let arm_b = fb.matrix * self.offset_b;
         let d = (b.position + arm_b) - (a.position + arm_a);
-        let e = a.rotation.inverse_transform_vector(&d) - self.rest_gap;
+        let e = fa.matrix.tr_mul(&d) - self.rest_gap;
         let fe = self.stiffness.translational.component_mul(&e);
         // f = dU/dp_b; the spring pulls b by -f and a by +f.
-        let f = a.rotation * fe;
+        let f = fa.matrix * fe;
         let theta = self.rotation_strain(a, b);
         let m = self.stiffness.rotational.component_mul(&theta);
-        let t = b.rotation * so3::right_jacobian_inv_t(&theta, &m);
+        let t = fb.matrix * so3::right_jacobian_inv_t(&theta, &m);
         JointLoad {
             force_a: f,
             torque_a: (arm_a + d).cross(&f) + t,

@@ -39,6 +39,8 @@ pub mod model;
 pub mod segment;
 pub mod settle;
 pub mod so3;
+pub mod sparse_tangent;
+pub mod spectrum;
 pub mod statics;
 pub mod tangent;
 

@@ -18,7 +18,7 @@ use strand_core::Strand;
 use crate::chain::{Chain, WireSection};
 use crate::contact::{self, ContactHistory, ContactLaw, ContactLoad, ContactOptions, ContactPoint};
 use crate::joint::JointSpring;
-use crate::segment::Pose;
+use crate::segment::{Frame, Placement, Pose};
 
 /// Boundary condition at one end of the strand.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -105,23 +105,24 @@ impl Wire {
         });
     }
 
-    /// Adds loads at `poses` from joints, anchors, the gravity field `gravity` (m/s^2) and
-    /// the external forces times `load_factor` to `loads`; returns (spring energy, potential
-    /// of gravity and external forces relative to the rest configuration) in J.
+    /// Adds loads at `poses` (frames `frames`) from joints, anchors, the gravity field
+    /// `gravity` (m/s^2) and the external forces times `load_factor` to `loads`; returns
+    /// (spring energy, potential of gravity and external forces relative to the rest
+    /// configuration) in J.
     fn add_loads(
         &self,
         poses: &[Pose],
+        frames: &[Frame],
         gravity: &Vector3<f64>,
         load_factor: f64,
-        loads: &mut WireLoads,
+        forces: &mut [Vector3<f64>],
+        torques: &mut [Vector3<f64>],
     ) -> (f64, f64) {
-        let mut spring = self
-            .chain
-            .add_joint_loads(poses, &mut loads.forces, &mut loads.torques);
+        let mut spring = self.chain.add_joint_loads(poses, frames, forces, torques);
         for a in &self.anchors {
             let l = a.joint.evaluate(&a.ground, &poses[a.segment]);
-            loads.forces[a.segment] += l.force_b;
-            loads.torques[a.segment] += l.torque_b;
+            forces[a.segment] += l.force_b;
+            torques[a.segment] += l.torque_b;
             spring += l.energy;
         }
         let mut potential = 0.0;
@@ -130,12 +131,12 @@ impl Wire {
         let rest = &self.chain.rest;
         for (k, s) in self.chain.segments.iter().enumerate() {
             let w = gravity * s.mass;
-            loads.forces[k] += w;
+            forces[k] += w;
             potential -= w.dot(&(poses[k].position - rest[k].position));
         }
         for (k, f) in self.external.iter().enumerate() {
             let f = f * load_factor;
-            loads.forces[k] += f;
+            forces[k] += f;
             potential -= f.dot(&(poses[k].position - rest[k].position));
         }
         (spring, potential)
@@ -261,6 +262,7 @@ impl FineModel {
         let (rc, rw) = (strand.core().radius(), wire.radius());
         let (core_wire, helical) = self.wires.split_at_mut(1);
         let core = &core_wire[0].chain;
+        let core_frames: Vec<Frame> = core.rest.iter().map(Frame::of).collect();
         for w in helical.iter_mut() {
             let c = &w.chain;
             let mut points = Vec::with_capacity(n_pts * c.len());
@@ -278,9 +280,11 @@ impl FineModel {
                         (i as f64 - 0.5) * 0.5 * seg.length
                     };
                     let offset = Vector3::new(a, 0.0, 0.0);
-                    let p = c.rest[k].point(&offset);
-                    let j = contact::nearest_core_segment(&core.rest, &core.segments, &p, 0);
-                    let q = contact::closest_on_axis(&p, &core.rest[j], core.segments[j].length);
+                    // In the arithmetic of the load evaluation (frames), so that the lay
+                    // geometry touches with exactly zero gap.
+                    let p = Frame::of(&c.rest[k]).point(&offset);
+                    let j = contact::nearest_core_segment(&core_frames, &core.segments, &p, 0);
+                    let q = contact::closest_on_axis(&p, &core_frames[j], core.segments[j].length);
                     let rest_distance = (p - q).norm();
                     points.push(ContactPoint {
                         segment: k,
@@ -383,6 +387,7 @@ impl FineModel {
                 contact_energy: 0.0,
                 friction_energy: 0.0,
                 slip_work: 0.0,
+                frames: vec![Frame::default(); w.chain.len()],
             })
             .collect()
     }
@@ -395,31 +400,83 @@ impl FineModel {
         let g = self.gravity * load_factor;
         let core_poses = &state.wires[0].poses;
         let core_segs = &self.wires[0].chain.segments;
-        self.wires
-            .par_iter()
-            .zip(state.wires.par_iter())
-            .zip(state.contacts.par_iter())
-            .zip(loads.par_iter_mut())
-            .for_each(|(((w, s), hist), l)| {
-                l.forces.iter_mut().for_each(|f| *f = Vector3::zeros());
-                l.torques.iter_mut().for_each(|t| *t = Vector3::zeros());
-                let (spring, grav) = w.add_loads(&s.poses, &g, load_factor, l);
-                l.spring_energy = spring;
-                l.gravity_energy = grav;
-                let (mut ce, mut fe, mut sw) = (0.0, 0.0, 0.0);
-                for ((cp, h), out) in w.contacts.iter().zip(hist).zip(l.contacts.iter_mut()) {
-                    let c = contact::evaluate(cp, h, &s.poses[cp.segment], core_poses, core_segs);
-                    l.forces[cp.segment] += c.force_wire;
-                    l.torques[cp.segment] += c.torque_wire;
-                    ce += c.normal_energy;
-                    fe += c.tangential_energy;
-                    sw += c.slip_work;
-                    *out = c;
-                }
-                l.contact_energy = ce;
-                l.friction_energy = fe;
-                l.slip_work = sw;
-            });
+        // The core's frames, read by every wire's contacts; the core's own loads alongside
+        // the helical wires'.
+        let (core_l, helical_l) = loads.split_at_mut(1);
+        let core_l = &mut core_l[0];
+        for (f, p) in core_l.frames.iter_mut().zip(core_poses) {
+            *f = Frame::of(p);
+        }
+        let WireLoads {
+            frames: core_frames,
+            forces: core_forces,
+            torques: core_torques,
+            spring_energy: core_spring,
+            gravity_energy: core_gravity,
+            ..
+        } = core_l;
+        let core_frames = &*core_frames;
+        let core_wire = &self.wires[0];
+        rayon::join(
+            || {
+                core_forces.fill(Vector3::zeros());
+                core_torques.fill(Vector3::zeros());
+                let (spring, grav) = core_wire.add_loads(
+                    core_poses,
+                    core_frames,
+                    &g,
+                    load_factor,
+                    core_forces,
+                    core_torques,
+                );
+                *core_spring = spring;
+                *core_gravity = grav;
+            },
+            || {
+                self.wires[1..]
+                    .par_iter()
+                    .zip(state.wires[1..].par_iter())
+                    .zip(state.contacts[1..].par_iter())
+                    .zip(helical_l.par_iter_mut())
+                    .for_each(|(((w, s), hist), l)| {
+                        l.forces.iter_mut().for_each(|f| *f = Vector3::zeros());
+                        l.torques.iter_mut().for_each(|t| *t = Vector3::zeros());
+                        for (f, p) in l.frames.iter_mut().zip(&s.poses) {
+                            *f = Frame::of(p);
+                        }
+                        let (spring, grav) = w.add_loads(
+                            &s.poses,
+                            &l.frames,
+                            &g,
+                            load_factor,
+                            &mut l.forces,
+                            &mut l.torques,
+                        );
+                        l.spring_energy = spring;
+                        l.gravity_energy = grav;
+                        let (mut ce, mut fe, mut sw) = (0.0, 0.0, 0.0);
+                        for ((cp, h), out) in w.contacts.iter().zip(hist).zip(l.contacts.iter_mut())
+                        {
+                            let c = contact::evaluate(
+                                cp,
+                                h,
+                                &l.frames[cp.segment],
+                                core_frames,
+                                core_segs,
+                            );
+                            l.forces[cp.segment] += c.force_wire;
+                            l.torques[cp.segment] += c.torque_wire;
+                            ce += c.normal_energy;
+                            fe += c.tangential_energy;
+                            sw += c.slip_work;
+                            *out = c;
+                        }
+                        l.contact_energy = ce;
+                        l.friction_energy = fe;
+                        l.slip_work = sw;
+                    });
+            },
+        );
         // The core's share, in a fixed order.
         let (core, helical) = loads.split_at_mut(1);
         let core = &mut core[0];
@@ -527,6 +584,9 @@ pub struct WireLoads {
     pub friction_energy: f64,
     /// Slip work of this wire's contacts since the last commit (J).
     pub slip_work: f64,
+    /// Frames of the wire's segments at the last evaluation (scratch of
+    /// [`FineModel::compute_loads`]).
+    pub frames: Vec<Frame>,
 }
 
 /// Energies of the model (J).

@@ -38,6 +38,79 @@ impl Pose {
     }
 }
 
+/// Where a rigid segment is: its centre and the map of body vectors to world axes. Two
+/// forms: a [`Pose`] (rotation as a unit quaternion, what the state stores) and a [`Frame`]
+/// (rotation as a matrix, for a body whose many points and directions are evaluated in one
+/// load evaluation: a matrix turns a vector in about half the operations of a quaternion).
+pub trait Placement {
+    /// Centre of mass in world coordinates (m).
+    fn centre(&self) -> Vector3<f64>;
+    /// World position (m) of the body-frame point `offset` (m).
+    fn point(&self, offset: &Vector3<f64>) -> Vector3<f64>;
+    /// World direction of body axis 1 (the segment's tangent).
+    fn tangent(&self) -> Vector3<f64>;
+    /// Body-frame components of the world vector `v`.
+    fn to_body(&self, v: &Vector3<f64>) -> Vector3<f64>;
+}
+
+impl Placement for Pose {
+    fn centre(&self) -> Vector3<f64> {
+        self.position
+    }
+    fn point(&self, offset: &Vector3<f64>) -> Vector3<f64> {
+        Pose::point(self, offset)
+    }
+    fn tangent(&self) -> Vector3<f64> {
+        Pose::tangent(self)
+    }
+    fn to_body(&self, v: &Vector3<f64>) -> Vector3<f64> {
+        self.rotation.inverse_transform_vector(v)
+    }
+}
+
+/// A pose with its rotation as a matrix (see [`Placement`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Frame {
+    /// Centre of mass in world coordinates (m).
+    pub position: Vector3<f64>,
+    /// Rotation matrix body -> world.
+    pub matrix: Matrix3<f64>,
+}
+
+impl Frame {
+    /// The frame of `pose`.
+    pub fn of(pose: &Pose) -> Self {
+        Self {
+            position: pose.position,
+            matrix: pose.matrix(),
+        }
+    }
+}
+
+impl Default for Frame {
+    fn default() -> Self {
+        Self {
+            position: Vector3::zeros(),
+            matrix: Matrix3::identity(),
+        }
+    }
+}
+
+impl Placement for Frame {
+    fn centre(&self) -> Vector3<f64> {
+        self.position
+    }
+    fn point(&self, offset: &Vector3<f64>) -> Vector3<f64> {
+        self.position + self.matrix * offset
+    }
+    fn tangent(&self) -> Vector3<f64> {
+        self.matrix.column(0).into_owned()
+    }
+    fn to_body(&self, v: &Vector3<f64>) -> Vector3<f64> {
+        self.matrix.tr_mul(v)
+    }
+}
+
 /// Mass properties of a rigid solid cylinder.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Segment {
@@ -116,8 +189,8 @@ impl Segment {
         let n = rotation * Vector3::x();
         let h1 = n.dot(h);
         let spin = dt * h1 * (1.0 / self.axial_inertia - 1.0 / self.transverse_inertia);
-        let world = UnitQuaternion::from_scaled_axis(h * (dt / self.transverse_inertia));
-        let body = UnitQuaternion::from_scaled_axis(Vector3::new(spin, 0.0, 0.0));
+        let world = crate::so3::exp(&(h * (dt / self.transverse_inertia)));
+        let body = crate::so3::exp(&Vector3::new(spin, 0.0, 0.0));
         let mut q = world * rotation * body;
         q.renormalize();
         q

@@ -12,31 +12,60 @@
 //! contacts are stressed but still take turns between stick and slip in the first
 //! iterations. The motion passes through those switches one small step at a time, with the
 //! contact histories committed every step, so friction follows a physical load path (gravity
-//! ramped with damping); Newton then converges from the settled state in a few iterations
-//! (its line search accepting residual decrease only), to the tight tolerance.
+//! ramped with damping); Newton then finishes from the settled state, to the tight tolerance.
+//! Implicit steps of the same damped motion (backward Euler on the assembled tangent plus the
+//! inertia, Newton per step, the histories committed after each) do not pay here. With
+//! friction, on the Table 1 strand at 20 segments per wire, their Newton iterations cycle
+//! between the stick and slip states and slip directions of hundreds of contacts for steps
+//! above 1e-4 s (15 explicit steps), while a factorization of the tangent costs about 100
+//! explicit steps at 77 segments per wire. Without friction, where the static state is
+//! unique, a continuation with a doubling step reached the settle's equilibrium (within
+//! 5e-10 m at the tip, 0.1 m strand, 12 segments per wire) in 306 steps and 1993 Newton
+//! iterations, eight times the settle's time.
 //!
 //! Mass-proportional damping at rate gamma makes every mode above gamma / 2 decay as
 //! exp(-gamma t / 2) and modes below it as exp(-omega^2 t / gamma): gamma near twice the
 //! lowest frequency settles fastest. Friction makes the static state depend on the load
-//! path: settled states of the Table 1 strand under g = 8 with gamma = 4.5 and 10 1/s differ
-//! by 3e-4 m at the tip.
+//! path, and strongly on the damping: on the Table 1 strand under g = 8 (20 segments per
+//! wire) states settled with gamma 5 % apart differ by 1.7e-4 m at the tip, while a ramp 5 %
+//! longer moves it by 1e-6 m, a time step 0.67 or 2.2 times as long by less than 2e-6 m and
+//! four times the segments' axial inertia by 2e-6 m: the motion of the strand as a whole sets
+//! the result, not the fast motions of its contacts.
+//!
+//! Newton from the settled state (the contact histories of the settled state frozen) most
+//! often converges, but it can stall where most closed contacts sit at the slip limit, as
+//! they do at rest. The settled state is then about 1e-5 m from the equilibrium the motion
+//! reaches at the tip; the motion goes on in short stretches and Newton is tried again from
+//! each, which on the Fig. 7 strand lands within 1e-6 m of the limit the motion itself
+//! reaches after another 0.9 s.
 
-use crate::dynamics::{Integrator, stable_time_step};
+use crate::dynamics::Integrator;
 use crate::model::{FineModel, ModelState};
-use crate::statics::{StaticOptions, StaticReport, residual_norms, scales, solve_static};
+use crate::spectrum::lanczos_highest_frequency;
+use crate::statics::{
+    Scales, StaticError, StaticOptions, StaticReport, residual_norms, scales, solve_static,
+};
 
 /// Controls of [`settle`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SettleOptions {
-    /// Damping rate gamma (1/s); `None`: 2 sqrt(|g| / L), about twice the lowest frequency
-    /// of the hanging strand (near-critical damping of its swing).
+    /// Damping rate gamma (1/s); `None`: twice the larger of sqrt(|g| / L), the frequency of
+    /// the hanging strand's swing, and the first bending frequency of the straight strand as a
+    /// cantilever (near-critical damping of the slowest motion; the second keeps the settle's
+    /// duration bounded under loads far below the paper's).
     pub damping_rate: Option<f64>,
     /// Time over which gravity rises linearly to its full value (s); `None`: 2 / gamma; 0:
     /// full gravity from the start.
     pub ramp_time: Option<f64>,
-    /// Time step (s); `None`: the stable step at `safety`.
+    /// Time step (s); `None`: `safety` x 2 / omega_max, with omega_max the Lanczos estimate
+    /// of the highest frequency ([`crate::spectrum`]).
     pub time_step: Option<f64>,
-    /// Safety factor on the stable step (-).
+    /// Fraction of the linear stability limit `omega_max dt = 2` (-). The pendulum's
+    /// [`crate::dynamics::MOTION_FACTOR`] does not apply: omega_max is that of contacts closed
+    /// at their stiffer (tangential) spring in every direction, above the strand's, and the
+    /// damped settle of the Table 1 strand ran stable to 1.0 (20 and 77 segments per wire);
+    /// default 0.75. A settle that turns non-finite is run again from rest at 0.54 (the
+    /// dynamic runs' 0.9 x 0.6).
     pub safety: f64,
     /// Simulated time allowed (s).
     pub max_time: f64,
@@ -52,7 +81,7 @@ impl Default for SettleOptions {
             damping_rate: None,
             ramp_time: None,
             time_step: None,
-            safety: 0.9,
+            safety: 0.75,
             max_time: 60.0,
             tolerance: 1e-4,
             check_every: 100,
@@ -107,6 +136,166 @@ pub enum SettleError {
     },
 }
 
+/// Damping rate and ramp time of the settle for `model` (1/s, s).
+fn damping_and_ramp(model: &FineModel, options: &SettleOptions) -> (f64, f64) {
+    let core = &model.wires[0].chain;
+    let length = core
+        .segments
+        .iter()
+        .map(|s| s.length)
+        .sum::<f64>()
+        .max(f64::MIN_POSITIVE);
+    let gamma = options.damping_rate.unwrap_or_else(|| {
+        // First bending frequency of a clamped-free beam with the wires' summed bending
+        // stiffness (a lower bound of the strand's) and the strand's mass per length.
+        let ei: f64 = model
+            .wires
+            .iter()
+            .map(|w| w.chain.section.youngs_modulus * w.chain.section.inertia)
+            .sum();
+        let mass: f64 = model.wires.iter().map(|w| w.chain.mass()).sum::<f64>() / length;
+        let bending = 3.516 * (ei / (mass * length.powi(4))).sqrt();
+        2.0 * (model.gravity.norm() / length).sqrt().max(bending)
+    });
+    let ramp = match options.ramp_time {
+        Some(t) => t,
+        None if gamma > 0.0 => 2.0 / gamma,
+        None => 0.0,
+    };
+    (gamma, ramp)
+}
+
+/// The damped motion of a settle, resumable after it has met its tolerance.
+struct DampedMotion {
+    int: Integrator,
+    gamma: f64,
+    ramp: f64,
+    sc: Scales,
+    check: u64,
+}
+
+impl DampedMotion {
+    /// Motion from rest at `state` (velocities zeroed) with the step `dt` (s).
+    fn start(model: &FineModel, state: &mut ModelState, options: &SettleOptions, dt: f64) -> Self {
+        let (gamma, ramp) = damping_and_ramp(model, options);
+        let sc = scales(
+            model,
+            &StaticOptions {
+                tolerance: options.tolerance,
+                ..Default::default()
+            },
+        );
+        for w in &mut state.wires {
+            w.velocities.iter_mut().for_each(|v| v.fill(0.0));
+            w.angular_momenta.iter_mut().for_each(|v| v.fill(0.0));
+        }
+        let mut int = Integrator::new(model, state, dt);
+        int.damping_rate = gamma;
+        int.load_factor = if ramp > 0.0 { 0.0 } else { 1.0 };
+        int.reload(model, state);
+        Self {
+            int,
+            gamma,
+            ramp,
+            sc,
+            check: options.check_every.max(1) as u64,
+        }
+    }
+
+    /// Moves until the residual is within the allowance at full load, or until the time
+    /// `until` (s); returns (within the allowance, largest ratio to it, scaled residual).
+    fn run(
+        &mut self,
+        model: &FineModel,
+        state: &mut ModelState,
+        until: f64,
+        progress: &mut dyn FnMut(&ModelState, f64, f64),
+    ) -> Result<(bool, f64, f64), SettleError> {
+        let ramp = self.ramp;
+        let factor = move |t: f64| if ramp > 0.0 { (t / ramp).min(1.0) } else { 1.0 };
+        let (mut ratio, mut residual) = (f64::INFINITY, f64::INFINITY);
+        while self.int.time < until {
+            self.int.advance(model, state, self.check, &factor);
+            (ratio, _, residual) = residual_norms(self.int.loads(), &self.sc);
+            if !ratio.is_finite() {
+                return Err(SettleError::NonFinite {
+                    time: self.int.time,
+                });
+            }
+            progress(state, self.int.time, ratio);
+            if self.int.load_factor >= 1.0 && ratio <= 1.0 {
+                return Ok((true, ratio, residual));
+            }
+        }
+        Ok((false, ratio, residual))
+    }
+
+    fn report(&self, ratio: f64, residual: f64) -> SettleReport {
+        SettleReport {
+            steps: self.int.steps,
+            time: self.int.time,
+            time_step: self.int.dt,
+            damping_rate: self.gamma,
+            ramp_time: self.ramp,
+            residual,
+            allowance_ratio: ratio,
+            force_scale: self.sc.force,
+            roundoff: self.sc.roundoff,
+        }
+    }
+}
+
+/// The settle's time step: `options.time_step`, or `safety` x 2 / omega_max (s).
+fn settle_step(model: &FineModel, state: &ModelState, safety: f64) -> f64 {
+    let omega = lanczos_highest_frequency(model, state, LANCZOS_STEPS).omega;
+    safety * 2.0 / omega
+}
+
+/// Lanczos steps of the settle's frequency estimate.
+const LANCZOS_STEPS: usize = 100;
+
+/// Fraction of the linear stability limit for a settle run again after turning non-finite.
+const FALLBACK_SAFETY: f64 = 0.9 * crate::dynamics::MOTION_FACTOR;
+
+/// Starts the damped motion of `options` at `state` and runs it until settled; a motion
+/// at the default step that turns non-finite is run again from the start state at the
+/// fallback step.
+fn settle_motion(
+    model: &FineModel,
+    state: &mut ModelState,
+    options: &SettleOptions,
+    progress: &mut dyn FnMut(&ModelState, f64, f64),
+) -> Result<(DampedMotion, SettleReport), SettleError> {
+    let start = state.clone();
+    let mut safety = options.safety;
+    loop {
+        let dt = options
+            .time_step
+            .unwrap_or_else(|| settle_step(model, state, safety));
+        let mut motion = DampedMotion::start(model, state, options, dt);
+        match motion.run(model, state, options.max_time, progress) {
+            Ok((true, ratio, residual)) => {
+                let report = motion.report(ratio, residual);
+                return Ok((motion, report));
+            }
+            Ok((false, ratio, residual)) => {
+                return Err(SettleError::NotSettled {
+                    time: motion.int.time,
+                    residual,
+                    ratio,
+                });
+            }
+            Err(e) => {
+                if options.time_step.is_some() || safety <= FALLBACK_SAFETY {
+                    return Err(e);
+                }
+                safety = FALLBACK_SAFETY;
+                state.clone_from(&start);
+            }
+        }
+    }
+}
+
 /// Brings `state` to static equilibrium under the model's gravity by damped motion from rest
 /// (see the module docs); `progress` receives the state, the simulated time (s) and the
 /// residual's ratio to its allowance at every check.
@@ -116,71 +305,7 @@ pub fn settle(
     options: &SettleOptions,
     progress: &mut dyn FnMut(&ModelState, f64, f64),
 ) -> Result<SettleReport, SettleError> {
-    let length = model.wires[0]
-        .chain
-        .segments
-        .iter()
-        .map(|s| s.length)
-        .sum::<f64>()
-        .max(f64::MIN_POSITIVE);
-    let gamma = options
-        .damping_rate
-        .unwrap_or_else(|| 2.0 * (model.gravity.norm() / length).sqrt());
-    let ramp = match options.ramp_time {
-        Some(t) => t,
-        None if gamma > 0.0 => 2.0 / gamma,
-        None => 0.0,
-    };
-    let dt = options
-        .time_step
-        .unwrap_or_else(|| stable_time_step(model, state, options.safety));
-    let sc = scales(
-        model,
-        &StaticOptions {
-            tolerance: options.tolerance,
-            ..Default::default()
-        },
-    );
-    for w in &mut state.wires {
-        w.velocities.iter_mut().for_each(|v| v.fill(0.0));
-        w.angular_momenta.iter_mut().for_each(|v| v.fill(0.0));
-    }
-    let mut int = Integrator::new(model, state, dt);
-    int.damping_rate = gamma;
-    let factor = |t: f64| if ramp > 0.0 { (t / ramp).min(1.0) } else { 1.0 };
-    int.load_factor = factor(0.0);
-    int.reload(model, state);
-    let check = options.check_every.max(1) as u64;
-    let (mut ratio, mut residual) = (f64::INFINITY, f64::INFINITY);
-    while int.time < options.max_time {
-        int.load_factor = factor(int.time + dt);
-        int.step(model, state);
-        if int.steps.is_multiple_of(check) {
-            (ratio, _, residual) = residual_norms(int.loads(), &sc);
-            if !ratio.is_finite() {
-                return Err(SettleError::NonFinite { time: int.time });
-            }
-            progress(state, int.time, ratio);
-            if int.load_factor >= 1.0 && ratio <= 1.0 {
-                return Ok(SettleReport {
-                    steps: int.steps,
-                    time: int.time,
-                    time_step: dt,
-                    damping_rate: gamma,
-                    ramp_time: ramp,
-                    residual,
-                    allowance_ratio: ratio,
-                    force_scale: sc.force,
-                    roundoff: sc.roundoff,
-                });
-            }
-        }
-    }
-    Err(SettleError::NotSettled {
-        time: int.time,
-        residual,
-        ratio,
-    })
+    settle_motion(model, state, options, progress).map(|(_, report)| report)
 }
 
 /// Controls of [`solve_settled`].
@@ -192,6 +317,12 @@ pub struct SettledOptions {
     /// The Newton polish from the settled state (one load step at full load; the line
     /// search should accept residual decrease only).
     pub polish: StaticOptions,
+    /// Simulated time the motion goes on between two Newton attempts after Newton stalled
+    /// (s).
+    pub retry_interval: f64,
+    /// Simulated time the motion may go on after the settle before the settled state is
+    /// taken as the result (s).
+    pub retry_time: f64,
 }
 
 impl Default for SettledOptions {
@@ -204,6 +335,8 @@ impl Default for SettledOptions {
                 potential_descent: false,
                 ..StaticOptions::default()
             },
+            retry_interval: 0.02,
+            retry_time: 0.5,
         }
     }
 }
@@ -211,10 +344,15 @@ impl Default for SettledOptions {
 /// Outcome of [`solve_settled`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SettledReport {
-    /// The damped motion.
+    /// The damped motion (up to the state Newton finished from, or to the result if it
+    /// never did).
     pub settle: SettleReport,
     /// The Newton polish, if it converged.
     pub polish: Option<StaticReport>,
+    /// Newton attempts (1 if the first converged).
+    pub attempts: usize,
+    /// Newton iterations of all attempts.
+    pub iterations: usize,
     /// Tolerance met by the result (scaled residual allowance, as in [`StaticOptions`]) (-).
     pub tolerance: f64,
     /// Final scaled residual `max(|F| / F_ref, |T| / (F_ref l_ref))` (-).
@@ -223,34 +361,56 @@ pub struct SettledReport {
 
 /// Static equilibrium under the model's gravity from the rest state in `state`: damped
 /// motion to `options.settle.tolerance`, then Newton to `options.polish.tolerance`. If
-/// Newton stalls (contacts switching between stick and slip, or open and closed, from one
-/// iteration to the next), the settled state is the result, within the settle tolerance.
-/// (On the Table 1 strand under g = 8, 20 segments per wire, Newton moved the tip of a state
-/// settled to 1e-4 by 9e-6 m.) `progress` receives the state, the simulated time (s) and the
-/// residual's ratio to the settle allowance during the motion.
+/// Newton stalls (contacts at the slip limit switching between stick and slip from one
+/// iteration to the next), the motion goes on for `retry_interval` and Newton starts again
+/// from there, for up to `retry_time`; if it never converges, the settled state where the
+/// motion stopped is the result, within the settle tolerance. `progress` receives the state,
+/// the simulated time (s) and the residual's ratio to the settle allowance during the motion.
 pub fn solve_settled(
     model: &FineModel,
     state: &mut ModelState,
     options: &SettledOptions,
     progress: &mut dyn FnMut(&ModelState, f64, f64),
 ) -> Result<SettledReport, SettleError> {
-    let settled = settle(model, state, &options.settle, progress)?;
-    let saved = state.clone();
-    match solve_static(model, state, &options.polish) {
-        Ok(p) => Ok(SettledReport {
-            settle: settled,
-            polish: Some(p),
-            tolerance: options.polish.tolerance,
-            residual: p.residual,
-        }),
-        Err(_) => {
-            *state = saved;
-            Ok(SettledReport {
+    let (mut motion, mut settled) = settle_motion(model, state, &options.settle, progress)?;
+    let give_up = settled.time + options.retry_time;
+    let mut saved = state.clone();
+    let (mut attempts, mut iterations) = (0, 0);
+    loop {
+        attempts += 1;
+        match solve_static(model, state, &options.polish) {
+            Ok(p) => {
+                return Ok(SettledReport {
+                    settle: settled,
+                    polish: Some(p),
+                    attempts,
+                    iterations: iterations + p.iterations,
+                    tolerance: options.polish.tolerance,
+                    residual: p.residual,
+                });
+            }
+            Err(e) => {
+                iterations += match e {
+                    StaticError::NotConverged { .. } => options.polish.max_iterations,
+                    _ => 0,
+                };
+                state.clone_from(&saved);
+            }
+        }
+        if motion.int.time + options.retry_interval > give_up + 1e-12 {
+            return Ok(SettledReport {
                 settle: settled,
                 polish: None,
+                attempts,
+                iterations,
                 tolerance: options.settle.tolerance,
                 residual: settled.residual,
-            })
+            });
         }
+        // The motion goes on from the state it stopped at (momenta included).
+        let until = motion.int.time + options.retry_interval;
+        let (_, ratio, residual) = motion.run(model, state, until, progress)?;
+        settled = motion.report(ratio, residual);
+        saved.clone_from(state);
     }
 }

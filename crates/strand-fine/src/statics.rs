@@ -14,13 +14,11 @@
 //! frozen during the iterations of a load step and committed when it converges, so friction follows
 //! the load path step by step.
 
-use faer::linalg::solvers::SolveCore;
-use faer::sparse::{SparseColMat, Triplet};
-use faer::{Conj, Mat};
-use nalgebra::Vector3;
+use nalgebra::{SMatrix, Vector3};
 
 use crate::model::{FineModel, ModelState, WireLoads};
 use crate::so3;
+use crate::sparse_tangent::SparseTangent;
 
 /// Controls of the static solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -126,6 +124,10 @@ pub(crate) struct Scales {
     pub(crate) force_allowance: f64,
     pub(crate) moment_allowance: f64,
     pub(crate) roundoff: f64,
+    /// Tolerance on the scaled residual (-).
+    pub(crate) tolerance: f64,
+    /// Round-off of a position, 100 ulps of the largest coordinate (m).
+    pub(crate) position_roundoff: f64,
 }
 
 /// Residual measures: (largest ratio to the allowance, 2-norm scaled by the reference
@@ -191,14 +193,24 @@ fn apply_step(base: &ModelState, delta: &[f64], alpha: f64, out: &mut ModelState
 
 /// Residual scales and allowances of `options` for `model`.
 pub(crate) fn scales(model: &FineModel, options: &StaticOptions) -> Scales {
-    let segs = model.wires.iter().flat_map(|w| w.chain.segments.iter());
-    let g = model.gravity.norm();
-    let weight = segs.clone().map(|s| s.mass * g).fold(0.0, f64::max);
-    let l_ref = segs.map(|s| s.length).fold(0.0, f64::max);
+    let l_ref = model
+        .wires
+        .iter()
+        .flat_map(|w| w.chain.segments.iter())
+        .map(|s| s.length)
+        .fold(0.0, f64::max);
+    // The largest load on a segment at full load: its weight plus its external force.
+    let mut load: f64 = 0.0;
+    for w in &model.wires {
+        for (k, seg) in w.chain.segments.iter().enumerate() {
+            let f = model.gravity * seg.mass + w.external.get(k).copied().unwrap_or_default();
+            load = load.max(f.norm());
+        }
+    }
     let force = if let Some(f) = options.force_scale {
         f
-    } else if weight > 0.0 {
-        weight
+    } else if load > 0.0 {
+        load
     } else {
         // No load: scale by a small force of the stiffest wire.
         model
@@ -226,13 +238,16 @@ pub(crate) fn scales(model: &FineModel, options: &StaticOptions) -> Scales {
         })
         .map(|j| j.stiffness.translational.max())
         .fold(0.0, f64::max);
-    let roundoff = 100.0 * f64::EPSILON * x_max * k_max;
+    let position_roundoff = 100.0 * f64::EPSILON * x_max;
+    let roundoff = position_roundoff * k_max;
     Scales {
         force,
         moment: force * l_ref,
         force_allowance: options.tolerance * force + roundoff,
         moment_allowance: (options.tolerance * force + roundoff) * l_ref,
         roundoff,
+        tolerance: options.tolerance,
+        position_roundoff,
     }
 }
 
@@ -258,29 +273,25 @@ enum Failure {
 
 /// Work buffers of the Newton iterations.
 struct Newton {
-    n: usize,
     loads: Vec<WireLoads>,
     trial: ModelState,
-    rhs: Mat<f64>,
     delta: Vec<f64>,
-    triplets: Vec<Triplet<usize, usize, f64>>,
+    tangent: SparseTangent,
 }
 
 impl Newton {
     fn new(model: &FineModel, state: &ModelState) -> Self {
         let n = 6 * model.segment_count();
         Self {
-            n,
             loads: model.load_buffers(),
             trial: state.clone(),
-            rhs: Mat::<f64>::zeros(n, 1),
             delta: vec![0.0; n],
-            triplets: Vec::new(),
+            tangent: SparseTangent::new(model, state),
         }
     }
 
-    /// Newton iterations at load factor `lambda` from `state` (histories frozen) until the
-    /// residual is within the allowance; returns (iterations, scaled residual).
+    /// Newton iterations at load factor `lambda` from `state` (histories frozen) until
+    /// converged (module docs); returns (iterations, scaled residual).
     fn solve(
         &mut self,
         model: &FineModel,
@@ -289,21 +300,22 @@ impl Newton {
         options: &StaticOptions,
         sc: &Scales,
     ) -> Result<(usize, f64), (usize, Failure)> {
-        let n = self.n;
         let Self {
             loads,
             trial,
-            rhs,
             delta,
-            triplets,
-            ..
+            tangent,
         } = self;
         model.compute_loads(state, lambda, loads);
         let (mut rmax, mut r2, mut rel) = residual_norms(loads, sc);
         let mut it = 0;
-        while rmax.is_nan() || rmax > 1.0 {
+        loop {
             if rmax.is_nan() {
                 return Err((it, Failure::NonFinite));
+            }
+            // Small against the loads in play, whatever the round-off.
+            if rel <= sc.tolerance {
+                break;
             }
             if it == options.max_iterations {
                 return Err((it, Failure::Stalled(rel)));
@@ -313,40 +325,27 @@ impl Newton {
             let mut s = 0;
             for l in loads.iter() {
                 for (f, t) in l.forces.iter().zip(&l.torques) {
-                    for i in 0..3 {
-                        rhs[(6 * s + i, 0)] = f[i];
-                        rhs[(6 * s + 3 + i, 0)] = t[i];
-                    }
+                    delta[6 * s..6 * s + 3].copy_from_slice(f.as_slice());
+                    delta[6 * s + 3..6 * s + 6].copy_from_slice(t.as_slice());
                     s += 1;
                 }
             }
-            triplets.clear();
-            for e in model.element_tangents(state) {
-                for (bi, si) in e.segments.iter().enumerate() {
-                    let Some(si) = si else { continue };
-                    for (bj, sj) in e.segments.iter().enumerate() {
-                        let Some(sj) = sj else { continue };
-                        for r in 0..6 {
-                            for c in 0..6 {
-                                let v = e.stiffness[(6 * bi + r, 6 * bj + c)];
-                                if v != 0.0 {
-                                    triplets.push(Triplet::new(6 * si + r, 6 * sj + c, v));
-                                }
-                            }
-                        }
-                    }
-                }
-            }
-            let singular = |e: &dyn std::fmt::Debug| (it, Failure::Singular(format!("{e:?}")));
-            let k = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, triplets)
-                .map_err(|e| singular(&e))?;
-            let lu = k.sp_lu().map_err(|e| singular(&e))?;
-            lu.solve_in_place_with_conj(Conj::No, rhs.as_mut());
-            for i in 0..n {
-                delta[i] = rhs[(i, 0)];
-            }
+            tangent.assemble(&model.element_tangents(state), |_| SMatrix::zeros());
+            tangent
+                .factor()
+                .map_err(|e| (it, Failure::Singular(e.to_string())))?;
+            tangent.solve_in_place(delta);
             if delta.iter().any(|d| !d.is_finite()) {
-                return Err(singular(&"non-finite Newton increment"));
+                return Err((
+                    it,
+                    Failure::Singular("non-finite Newton increment".to_string()),
+                ));
+            }
+            // Within the round-off allowance: converged if the correction this residual
+            // asks for is also within the round-off of the positions or small against the
+            // displacements (the residual is round-off, not an error of the solution).
+            if rmax <= 1.0 && correction_is_small(model, state, delta, sc) {
+                break;
             }
             // Trust region: the largest rotation and translation of a segment in one
             // iteration are capped (the contact gaps are nonlinear in the rotations).
@@ -375,7 +374,7 @@ impl Newton {
                 let (tmax, t2, trel) = residual_norms(loads, sc);
                 let armijo = options.potential_descent
                     && potential(loads) <= potential0 + 1e-4 * alpha * slope;
-                if armijo || t2 < (1.0 - 1e-4 * alpha) * r2 || tmax <= 1.0 {
+                if armijo || t2 < (1.0 - 1e-4 * alpha) * r2 || trel <= sc.tolerance {
                     rmax = tmax;
                     rel = trel;
                     r2 = t2;
@@ -397,6 +396,26 @@ impl Newton {
         }
         Ok((it, rel))
     }
+}
+
+/// True when the Newton correction `delta` at `state` moves no segment by more than the
+/// larger of the position round-off and `tolerance` times the largest displacement from
+/// rest, and turns none by more than the larger of 100 eps and `tolerance` times the
+/// largest rotation from rest.
+fn correction_is_small(model: &FineModel, state: &ModelState, delta: &[f64], sc: &Scales) -> bool {
+    let (mut u_max, mut theta_max) = (0.0f64, 0.0f64);
+    for (w, ws) in model.wires.iter().zip(&state.wires) {
+        for (rest, p) in w.chain.rest.iter().zip(&ws.poses) {
+            u_max = u_max.max((p.position - rest.position).norm());
+            theta_max = theta_max.max(p.rotation.angle_to(&rest.rotation));
+        }
+    }
+    let dx_allowed = sc.position_roundoff.max(sc.tolerance * u_max);
+    let dw_allowed = (100.0 * f64::EPSILON).max(sc.tolerance * theta_max);
+    delta.chunks_exact(6).all(|d| {
+        Vector3::new(d[0], d[1], d[2]).norm() <= dx_allowed
+            && Vector3::new(d[3], d[4], d[5]).norm() <= dw_allowed
+    })
 }
 
 /// [`solve_static`] reporting the load factor reached after every load step to `progress`.

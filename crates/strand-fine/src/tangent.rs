@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use crate::contact::{self, ContactLoad};
 use crate::joint::perturb;
 use crate::model::{FineModel, ModelState};
-use crate::segment::Pose;
+use crate::segment::{Frame, Placement, Pose};
 
 /// Stiffness of one element (joint or anchor) on its segments.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -49,6 +49,7 @@ impl FineModel {
         let offsets = self.segment_offsets();
         let core = &self.wires[0].chain;
         let core_poses = &state.wires[0].poses;
+        let core_frames: Vec<Frame> = core_poses.iter().map(Frame::of).collect();
         let per_wire: Vec<Vec<ElementTangent>> = self
             .wires
             .par_iter()
@@ -59,9 +60,9 @@ impl FineModel {
                 let mut out = Vec::new();
                 for (cp, h) in w.contacts.iter().zip(hist) {
                     let wire = s.poses[cp.segment];
-                    let p = wire.point(&cp.offset);
+                    let p = Frame::of(&wire).point(&cp.offset);
                     let j = contact::nearest_core_segment(
-                        core_poses,
+                        &core_frames,
                         &core.segments,
                         &p,
                         h.core_segment,
@@ -85,13 +86,14 @@ impl FineModel {
                                 anchor = cj;
                             }
                         }
+                        let (wp, cj, anchor) = (Frame::of(&wp), Frame::of(&cj), Frame::of(&anchor));
                         contact::evaluate_pair(cp, h, &wp, &cj, j, lj, &anchor)
                     };
                     if eval(0, 0.0).state == contact::ContactState::Open {
                         // A contact at exactly zero gap (the lay geometry) enters with its
                         // normal spring, so that Newton sees the core under the wire before
                         // it penetrates.
-                        let q = contact::closest_on_axis(&p, &core_poses[j], lj);
+                        let q = contact::closest_on_axis(&p, &core_frames[j], lj);
                         let d = p - q;
                         if d.norm() > cp.rest_distance || d.norm() == 0.0 {
                             continue;
@@ -177,6 +179,51 @@ impl FineModel {
                 out.push(ElementTangent {
                     segments: [Some(off + cp.segment), Some(j)],
                     stiffness: b.transpose() * b * k,
+                });
+            }
+        }
+        out
+    }
+
+    /// Tangents of every contact as if closed and stuck, at `state`: the normal spring `k_n`
+    /// along the line between the axes and the stick spring `k_t` across it, acting at the
+    /// contact point between the surfaces (so the core turns about its axis on the arm of its
+    /// radius and the wire on its own). Slip and opening only soften a contact, so these
+    /// bound the contact stiffness in every state (geometric terms of the contact forces
+    /// aside), closer than [`FineModel::contact_bound_tangents`], which puts `max(k_n, k_t)`
+    /// in every direction at the wire's axis.
+    pub fn contact_stick_tangents(&self, state: &ModelState) -> Vec<ElementTangent> {
+        let offsets = self.segment_offsets();
+        let core = &self.wires[0].chain;
+        let core_poses = &state.wires[0].poses;
+        let mut out = Vec::with_capacity(self.contact_count());
+        for ((w, s), (hist, &off)) in self
+            .wires
+            .iter()
+            .zip(&state.wires)
+            .zip(state.contacts.iter().zip(&offsets))
+        {
+            for (cp, h) in w.contacts.iter().zip(hist) {
+                let wire = &s.poses[cp.segment];
+                let p = wire.point(&cp.offset);
+                let j =
+                    contact::nearest_core_segment(core_poses, &core.segments, &p, h.core_segment);
+                let cj = &core_poses[j];
+                let q = contact::closest_on_axis(&p, cj, core.segments[j].length);
+                let d = p - q;
+                let n = if d.norm() > 0.0 {
+                    d.normalize()
+                } else {
+                    continue;
+                };
+                let x = q + d * cp.core_share;
+                let b = contact_jacobian(&(x - wire.position), &(x - cj.position));
+                let law = &cp.law;
+                let spring = n * n.transpose() * (law.normal_stiffness - law.tangential_stiffness)
+                    + Matrix3::identity() * law.tangential_stiffness;
+                out.push(ElementTangent {
+                    segments: [Some(off + cp.segment), Some(j)],
+                    stiffness: b.transpose() * spring * b,
                 });
             }
         }

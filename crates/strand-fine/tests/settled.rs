@@ -75,3 +75,82 @@ fn short_strand_settles_between_the_all_slip_and_all_stick_elastica() {
     );
     assert!(-tip.y > stick && -tip.y < slip * (1.0 + chain));
 }
+
+/// Convergence with a scale, with contacts: the short strand under its weight times 1e-12,
+/// 1e-6 and 1e-3 settles and converges (the settle's duration set by the strand's first
+/// bending frequency when gravity's is lower; the residual against the loads in play, or the
+/// Newton correction within the round-off of the positions), and its tip drops between the
+/// linear deflections q L^4 / (8 K) of the all-stick (K_max) and all-slip (K_min) closed
+/// forms (the all-slip one with the chain's discretisation allowance); without friction it
+/// is the all-slip one within that allowance. Without friction the deflection is linear in
+/// the load: the drops per unit load at 1e-6 and 1e-3 agree within 1e-3 (the geometric
+/// nonlinearity at 1e-3 is of order (drop / L)^2, 2e-8).
+#[test]
+fn tiny_loads_settle_between_the_stick_and_slip_stiffness() {
+    let (length, g) = (0.1, 8.0);
+    for mu in [0.0, 0.3] {
+        let mut spec = StrandSpec::paper(length, 2.0e8, 7801.0);
+        spec.friction = mu;
+        let strand = Strand::new(spec).unwrap();
+        let mut per_load = Vec::new();
+        for factor in [1e-12, 1e-6, 1e-3] {
+            let mut m = FineModel::from_strand(
+                &strand,
+                Discretisation {
+                    core_segments: 12,
+                    wire_segments: 12,
+                },
+                Support::Clamped,
+                Support::Free,
+            );
+            m.add_contacts(&strand, &ContactOptions::default());
+            m.gravity = Vector3::new(0.0, -g * factor, 0.0);
+            let mut state = m.rest_state();
+            let r = solve_settled(
+                &m,
+                &mut state,
+                &SettledOptions::default(),
+                &mut |_, _, _| {},
+            )
+            .unwrap();
+            let drop = -m.core_centreline(&state).last().unwrap().y;
+            let q = strand.mass_per_length() * g * factor;
+            let linear = |k: f64| q * length.powi(4) / (8.0 * k);
+            let (stick, slip) = (
+                linear(strand.max_bending_stiffness(BaseStiffness::default())),
+                linear(strand.min_bending_stiffness(BaseStiffness::default())),
+            );
+            println!(
+                "mu {mu}, weight x {factor:e}: {} steps ({:.3} s), Newton {:?} in {} attempts; \
+                 drop {drop:.6e} m = {:.4} of the all-slip drop (all-stick {:.4})",
+                r.settle.steps,
+                r.settle.time,
+                r.polish.map(|p| p.iterations),
+                r.attempts,
+                drop / slip,
+                stick / slip
+            );
+            assert!(r.polish.is_some(), "Newton converged");
+            // The 12-segment chain's own discretisation error (see the test above).
+            let chain = 1.0e-2 * (10.0f64 / 12.0).powi(2);
+            assert!(
+                drop > stick && drop < slip * (1.0 + chain),
+                "between the closed forms"
+            );
+            if mu == 0.0 {
+                // Frictionless, every wire slips: the drop is the all-slip closed form's, up
+                // to the chain's allowance and the round-off of positions of order L (a
+                // segment's worth of ulps per segment along the chain).
+                let roundoff = 12.0 * f64::EPSILON * length;
+                assert!(
+                    (drop - slip).abs() <= chain * slip + roundoff,
+                    "frictionless drop {drop:e} m against q L^4 / (8 K_min) = {slip:e} m"
+                );
+            }
+            per_load.push(drop / factor);
+        }
+        if mu == 0.0 {
+            assert!((per_load[1] / per_load[2] - 1.0).abs() < 1e-3);
+        }
+    }
+}

@@ -256,7 +256,7 @@ fn run_settle(
     let s = &r.settle;
     summary.steps = s.steps as usize;
     summary.time_step = Some(s.time_step);
-    summary.newton_iterations = r.polish.map_or(0, |p| p.iterations);
+    summary.newton_iterations = r.iterations;
     summary.built.push(format!(
         "static equilibrium with contacts: damped motion from rest (gravity ramped over \
          {:.3} s, mass-proportional damping at {:.3} 1/s, {} explicit steps of {:.3e} s, \
@@ -266,15 +266,17 @@ fn run_settle(
     summary.built.push(match r.polish {
         Some(p) => format!(
             "converged: every segment's force and torque within {:.0e} of the largest segment \
-             weight {:.3e} N (plus round-off {:.1e} N) after {} Newton iterations (largest \
+             load {:.3e} N (or within round-off {:.1e} N with a Newton correction within the \
+             round-off of the positions) after {} Newton iterations in {} attempt(s) (largest \
              scaled load {:.2e})",
-            opts.polish.tolerance, p.force_scale, p.roundoff, p.iterations, p.residual
+            opts.polish.tolerance, p.force_scale, p.roundoff, r.iterations, r.attempts, p.residual
         ),
         None => format!(
             "converged by the damped motion: every segment's force and torque within {:.0e} of \
-             the largest segment weight {:.3e} N (largest scaled load {:.2e}); Newton from the \
-             settled state stalled on contacts switching state between iterations",
-            r.tolerance, s.force_scale, r.residual
+             the largest segment load {:.3e} N (largest scaled load {:.2e}); Newton from the \
+             settled state stalled in {} attempts on contacts switching state between \
+             iterations",
+            r.tolerance, s.force_scale, r.residual, r.attempts
         ),
     });
     Ok(())
