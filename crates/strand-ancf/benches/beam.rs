@@ -28,6 +28,7 @@ fn beam(elements: usize, kind: LawKind, support: Support, element: ElementKind) 
             gravity: [0.0, -12.0, 0.0],
             start: Some(support),
             end: None,
+            ..Default::default()
         },
         SectionLaw::new(&s, kind),
     )
@@ -52,17 +53,26 @@ fn assembly(c: &mut Criterion) {
             };
             let mut force = vec![0.0; b.coords()];
             let mut k = BandMatrix::zeros(b.dofs(), b.bandwidth(), b.bandwidth());
+            let state = b.initial_state();
+            let mut trial = state.clone();
             let name = format!("{element:?} {n} element(s)");
             c.bench_function(&format!("{name}: forces"), |bch| {
                 bch.iter(|| {
-                    b.internal(black_box(&q), &[], &mut [], &mut force, None, None)
+                    b.internal(black_box(&q), &state, &mut trial, &mut force, None, None)
                         .unwrap()
                 })
             });
             c.bench_function(&format!("{name}: forces and tangent"), |bch| {
                 bch.iter(|| {
-                    b.internal(black_box(&q), &[], &mut [], &mut force, Some(&mut k), None)
-                        .unwrap()
+                    b.internal(
+                        black_box(&q),
+                        &state,
+                        &mut trial,
+                        &mut force,
+                        Some(&mut k),
+                        None,
+                    )
+                    .unwrap()
                 })
             });
         }
@@ -108,6 +118,7 @@ fn pendulum(kind: LawKind) -> Beam {
             gravity: [0.0, -9.8, 0.0],
             start: Some(Support::Pinned),
             end: None,
+            ..Default::default()
         },
         SectionLaw::new(&s, kind),
     )
@@ -156,7 +167,7 @@ fn newton_iteration(c: &mut Criterion) {
                 -stretch * sn,
             ]);
         }
-        let slip = vec![0.0; b.state_len()];
+        let slip = b.initial_state();
         let mut trial = slip.clone();
         let mut force = vec![0.0; b.coords()];
         let n = b.dofs();

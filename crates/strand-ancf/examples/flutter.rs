@@ -42,6 +42,7 @@ fn main() {
                 gravity: [0.0, -9.8, 0.0],
                 start: Some(Support::Pinned),
                 end: None,
+                ..Default::default()
             },
             SectionLaw::new(&s, kind),
         )

@@ -38,6 +38,7 @@ fn beam(kind: LawKind, points: Option<usize>) -> Beam {
             gravity: [0.0, -9.8, 0.0],
             start: Some(Support::Pinned),
             end: None,
+            ..Default::default()
         },
         SectionLaw::new(&s, kind),
     )

@@ -220,6 +220,7 @@ mod tests {
                 gravity: [0.0, -9.81, 0.0],
                 start,
                 end: None,
+                ..Default::default()
             },
             SectionLaw::new(&s, LawKind::Continuous),
         )
@@ -250,7 +251,7 @@ mod tests {
     fn tangent(beam: &Beam, q: &[f64]) -> BandMatrix {
         let b = beam.bandwidth();
         let mut k = BandMatrix::zeros(beam.dofs(), b, b);
-        let slip = vec![0.0; beam.state_len()];
+        let slip = beam.initial_state();
         let mut trial = slip.clone();
         let mut force = vec![0.0; beam.coords()];
         beam.internal(q, &slip, &mut trial, &mut force, Some(&mut k), None)

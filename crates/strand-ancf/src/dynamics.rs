@@ -1,5 +1,5 @@
 //! Dynamics of the strand beam, `M q'' + Q_e(q) = Q_g` (eq. (47) with the supports
-//! eliminated), from rest in the reference configuration (SPEC 5).
+//! eliminated), from rest in the reference configuration or from an [`InitialState`] (SPEC 5).
 //!
 //! * Stoermer-Verlet (the paper's integrator), explicit: the constant mass matrix is factored
 //!   once; the stable step comes from the largest eigenvalue of the assembled system
@@ -18,10 +18,16 @@
 //! work stays at its initial value up to the integrator's own error, reported as the balance
 //! error. The non-potential work is kept apart from the dissipation so that energy a law puts
 //! in cannot pass for negative dissipation.
+//! Moving supports (`beam::supports`) add the work they do on the strand, which the total
+//! subtracts too. In 3D the non-potential work includes `energy_turn . d kappa`, the work of
+//! the wires' moment normal to the bending direction that the law does not apply (zero in
+//! planar motion).
 
 use crate::band::{BandMatrix, BandSolver};
 use crate::beam::{Beam, BeamError, PointState};
 use crate::corotation::Corotation;
+use crate::initial::InitialState;
+use crate::moving_support::Drive;
 use crate::statics::{add_free, gather_free};
 
 pub use crate::stability::stable_step;
@@ -113,16 +119,21 @@ pub struct Energies {
     pub elastic: f64,
     /// Work dissipated so far by slip (hysteretic law; never negative).
     pub dissipated: f64,
-    /// Work done on the strand so far by the non-potential part of the `continuous` and
-    /// `paper` laws (positive: energy put in).
+    /// Work done on the strand so far by the non-potential part of the section laws (the
+    /// `continuous` and `paper` laws' `energy_strain d eps`, and in 3D the turn term of every
+    /// law; positive: energy put in).
     pub non_potential: f64,
+    /// Work done on the strand by moving supports so far.
+    pub supports: f64,
 }
 
 impl Energies {
-    /// Kinetic + gravity + elastic + dissipated - non-potential work: constant up to the
-    /// integrator's error.
+    /// Kinetic + gravity + elastic + dissipated - non-potential work - support work: constant
+    /// up to the integrator's error.
     pub fn total(&self) -> f64 {
-        self.kinetic + self.gravity + self.elastic + self.dissipated - self.non_potential
+        self.kinetic + self.gravity + self.elastic + self.dissipated
+            - self.non_potential
+            - self.supports
     }
 }
 
@@ -133,7 +144,7 @@ pub struct Frame<'a> {
     pub t: f64,
     /// Coordinates, all of them.
     pub q: &'a [f64],
-    /// Velocities, all of them (zero for supported coordinates).
+    /// Velocities, all of them (zero for coordinates a fixed support holds).
     pub v: &'a [f64],
     /// Energies.
     pub energies: Energies,
@@ -166,7 +177,7 @@ pub struct DynamicSummary {
     pub q: Vec<f64>,
     /// Final velocities.
     pub v: Vec<f64>,
-    /// Final committed slip state of the section law.
+    /// Final committed per-point state (the law's slip state and the section frames).
     pub slip: Vec<f64>,
 }
 
@@ -218,12 +229,19 @@ pub enum DynamicError {
 }
 
 /// Work done on the strand over a step by the non-potential part of the stick/slip laws (J,
-/// positive when it puts energy in): `energy_strain d eps` at every bending point between the
-/// states `old` and `new` (midpoint rule, SPEC 2).
+/// positive when it puts energy in): `energy_strain d eps + energy_turn . d kappa` at every
+/// bending point between the states `old` and `new` (trapezoidal rule, SPEC 2). The second
+/// term, the work of the wires' moment normal to the bending direction that the law does not
+/// apply, is zero in planar motion.
 pub fn non_potential_work(old: &[PointState], new: &[PointState]) -> f64 {
     old.iter()
         .zip(new)
-        .map(|(a, b)| 0.5 * a.weight * (a.energy_strain + b.energy_strain) * (b.eps - a.eps))
+        .map(|(a, b)| {
+            let [ny, nz] = [0, 1].map(|j| a.energy_turn[j] + b.energy_turn[j]);
+            let turn = ny * (b.kappa_y - a.kappa_y) + nz * (b.kappa - a.kappa);
+            0.5 * a.weight * (a.energy_strain + b.energy_strain) * (b.eps - a.eps)
+                + 0.5 * a.weight * turn
+        })
         .sum()
 }
 
@@ -238,7 +256,7 @@ struct Ledger {
 }
 
 impl Ledger {
-    /// A ledger starting from coordinates `q0` with stored energy `e0`.
+    /// A ledger starting from coordinates `q0` with stored and kinetic energy `e0`.
     fn new(beam: &Beam, q0: &[f64], e0: f64) -> Ledger {
         let potential = -q0
             .iter()
@@ -270,17 +288,18 @@ impl Ledger {
         self.non_potential += non_potential_work(old, new);
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn energies(
         &mut self,
         beam: &Beam,
         t: f64,
         q: &[f64],
         vf: &[f64],
+        drive: &Drive,
         mv: &mut [f64],
         elastic: f64,
     ) -> Energies {
-        beam.vector_mass().mul_vec(vf, mv);
-        let kinetic = 0.5 * vf.iter().zip(mv.iter()).map(|(a, b)| a * b).sum::<f64>();
+        let kinetic = beam.kinetic_energy(vf, drive.velocity(), mv);
         let e = Energies {
             t,
             kinetic,
@@ -288,6 +307,7 @@ impl Ledger {
             elastic,
             dissipated: self.dissipated,
             non_potential: self.non_potential,
+            supports: drive.work,
         };
         self.balance_error = self.balance_error.max((e.total() - self.e0).abs());
         self.max_kinetic = self.max_kinetic.max(kinetic);
@@ -302,6 +322,23 @@ pub fn run_dynamic(
     opts: &DynamicOptions,
     observer: &mut dyn FnMut(Frame<'_>),
 ) -> Result<DynamicSummary, DynamicError> {
+    run_dynamic_from(beam, opts, &InitialState::rest(beam), observer)
+}
+
+/// Runs the dynamics of `beam` from `init`; `observer` sees the state at t = 0 and every
+/// output interval (and the last step).
+pub fn run_dynamic_from(
+    beam: &Beam,
+    opts: &DynamicOptions,
+    init: &InitialState,
+    observer: &mut dyn FnMut(Frame<'_>),
+) -> Result<DynamicSummary, DynamicError> {
+    let n = beam.coords();
+    if init.q.len() != n || init.v.len() != n || init.state.len() != beam.state_len() {
+        return Err(DynamicError::Setup(
+            "the initial state does not fit the beam".into(),
+        ));
+    }
     if !(opts.duration > 0.0 && opts.output_interval > 0.0) {
         return Err(DynamicError::Setup(
             "duration and output interval must be positive".into(),
@@ -318,7 +355,7 @@ pub fn run_dynamic(
             if h > stable {
                 return Err(DynamicError::Unstable { step: h, stable });
             }
-            verlet(beam, opts, h, stable, observer)
+            verlet(beam, opts, init, h, stable, observer)
         }
         Scheme::GeneralizedAlpha {
             step,
@@ -330,15 +367,18 @@ pub fn run_dynamic(
                         .into(),
                 ));
             }
-            generalized_alpha(beam, opts, step, spectral_radius, observer)
+            generalized_alpha(beam, opts, init, step, spectral_radius, observer)
         }
     }
 }
 
-/// Full-length velocity vector from the free velocities.
-fn scatter_velocity(beam: &Beam, vf: &[f64], v: &mut [f64]) {
+/// Full-length velocity vector from the free velocities and the moving supports'.
+fn scatter_velocity(beam: &Beam, vf: &[f64], drive: &Drive, v: &mut [f64]) {
     for (g, x) in v.iter_mut().enumerate() {
         *x = beam.free_index(g).map_or(0.0, |i| vf[i]);
+    }
+    for (k, x) in drive.velocity().iter().enumerate() {
+        v[beam.moving_coordinate(k)] = *x;
     }
 }
 
@@ -351,6 +391,7 @@ fn steps_for(duration: f64, h: f64) -> (usize, f64) {
 fn verlet(
     beam: &Beam,
     opts: &DynamicOptions,
+    init: &InitialState,
     h: f64,
     stable: f64,
     observer: &mut dyn FnMut(Frame<'_>),
@@ -361,13 +402,15 @@ fn verlet(
     if !mass.factorize(beam.mass()) {
         return Err(DynamicError::Singular("mass"));
     }
-    let mut q = beam.reference().to_vec();
+    let mut q = init.q.clone();
     let mut vf = vec![0.0; nf];
+    gather_free(beam, &init.v, &mut vf);
     let mut v = vec![0.0; q.len()];
+
     let mut af = vec![0.0; nf];
     let mut force = vec![0.0; q.len()];
     let mut mv = vec![0.0; nf];
-    let mut slip = vec![0.0; beam.state_len()];
+    let mut slip = init.state.clone();
     let mut trial = slip.clone();
     let mut pts = vec![PointState::default(); beam.points()];
     let mut pts_new = pts.clone();
@@ -387,8 +430,11 @@ fn verlet(
         .internal(&q, &slip, &mut trial, &mut force, None, Some(&mut pts))
         .map_err(fail(0.0, 0))?;
     accel(&force, &mut af);
-    let mut ledger = Ledger::new(beam, &q, ev.energy);
-    let mut en = ledger.energies(beam, 0.0, &q, &vf, &mut mv, ev.energy);
+    let mut drive = Drive::new(beam, &q, &init.v, &force);
+    let kinetic = beam.kinetic_energy(&vf, drive.velocity(), &mut mv);
+    let mut ledger = Ledger::new(beam, &q, ev.energy + kinetic);
+    let mut en = ledger.energies(beam, 0.0, &q, &vf, &drive, &mut mv, ev.energy);
+    scatter_velocity(beam, &vf, &drive, &mut v);
     observer(Frame {
         t: 0.0,
         q: &q,
@@ -399,10 +445,12 @@ fn verlet(
     let mut next_out = opts.output_interval;
     for step in 1..=n_steps {
         let t = step as f64 * h;
+        drive.kick(beam, t - h, &mut vf, &mass, &mut mv);
         for i in 0..nf {
             vf[i] += 0.5 * h * af[i];
         }
         add_free(beam, &mut q, h, &vf);
+        beam.move_supports(&mut q, t);
         let ev = beam
             .internal(&q, &slip, &mut trial, &mut force, None, Some(&mut pts_new))
             .map_err(fail(t, step))?;
@@ -423,10 +471,11 @@ fn verlet(
         }
         slip.copy_from_slice(&trial);
         ledger.dissipate(ev.slip_work, &pts, &pts_new);
+        drive.end_step(beam, &q, &vf, &force);
         std::mem::swap(&mut pts, &mut pts_new);
-        en = ledger.energies(beam, t, &q, &vf, &mut mv, ev.energy);
+        en = ledger.energies(beam, t, &q, &vf, &drive, &mut mv, ev.energy);
         if t >= next_out - 1e-9 * h || step == n_steps {
-            scatter_velocity(beam, &vf, &mut v);
+            scatter_velocity(beam, &vf, &drive, &mut v);
             observer(Frame {
                 t,
                 q: &q,
@@ -439,7 +488,7 @@ fn verlet(
             }
         }
     }
-    scatter_velocity(beam, &vf, &mut v);
+    scatter_velocity(beam, &vf, &drive, &mut v);
     Ok(DynamicSummary {
         time_step: h,
         stable_step: Some(stable),
@@ -524,6 +573,7 @@ fn alpha_step(
     beam: &Beam,
     opts: &DynamicOptions,
     rho: f64,
+    t0: f64,
     h: f64,
     depth: usize,
     st: &mut AlphaState,
@@ -558,6 +608,7 @@ fn alpha_step(
         st.acc[i] = pa;
     }
     add_free(beam, &mut st.q, 1.0, &w.dq);
+    beam.move_supports(&mut st.q, t0 + h);
     // Modified Newton: the factorized iteration matrix S = beta' M + K is kept across
     // iterations and steps and rebuilt when the step size changes or a correction shrinks by
     // less than `opts.refresh`; every force evaluation is exact, so the converged state is the
@@ -608,7 +659,7 @@ fn alpha_step(
         w.rot.apply(&mut w.dq, true);
         w.solver.solve(&mut w.dq);
         w.rot.apply(&mut w.dq, false);
-        let dn = w.dq.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let dn = beam.correction_size(&w.dq);
         if !dn.is_finite() || dn > beam.length() {
             // Diverged: the step is retried in halves, with a fresh matrix.
             w.factor_h = 0.0;
@@ -680,8 +731,19 @@ fn alpha_step(
         }
         None if depth > 0 => {
             st.copy_from(&w.saved[level]);
-            let a = alpha_step(beam, opts, rho, 0.5 * h, depth - 1, st, w, pts, pts_new)?;
-            let b = alpha_step(beam, opts, rho, 0.5 * h, depth - 1, st, w, pts, pts_new)?;
+            let a = alpha_step(beam, opts, rho, t0, 0.5 * h, depth - 1, st, w, pts, pts_new)?;
+            let b = alpha_step(
+                beam,
+                opts,
+                rho,
+                t0 + 0.5 * h,
+                0.5 * h,
+                depth - 1,
+                st,
+                w,
+                pts,
+                pts_new,
+            )?;
             Ok(StepOutcome {
                 iterations: iterations + a.iterations + b.iterations,
                 slip_work: a.slip_work + b.slip_work,
@@ -708,6 +770,7 @@ const MAX_CUTS: usize = 10;
 fn generalized_alpha(
     beam: &Beam,
     opts: &DynamicOptions,
+    init: &InitialState,
     h: f64,
     rho: f64,
     observer: &mut dyn FnMut(Frame<'_>),
@@ -717,19 +780,20 @@ fn generalized_alpha(
     let b = beam.bandwidth();
     let zeros = vec![0.0; nf];
     let new_state = || AlphaState {
-        q: beam.reference().to_vec(),
+        q: init.q.clone(),
         vf: zeros.clone(),
         acc: zeros.clone(),
         alg: zeros.clone(),
-        slip: vec![0.0; beam.state_len()],
+        slip: init.state.clone(),
     };
     let mut st = new_state();
+    gather_free(beam, &init.v, &mut st.vf);
     let mut w = AlphaWork {
         force: vec![0.0; beam.coords()],
         r: zeros.clone(),
         dq: zeros.clone(),
         mv: zeros.clone(),
-        trial: vec![0.0; beam.state_len()],
+        trial: beam.initial_state(),
         g_free: zeros.clone(),
         k: BandMatrix::zeros(nf, b, b),
         solver: BandSolver::default(),
@@ -767,8 +831,11 @@ fn generalized_alpha(
     }
     m.solve(&mut st.acc);
     st.alg.copy_from_slice(&st.acc);
-    let mut ledger = Ledger::new(beam, &st.q, ev.energy);
-    let mut en = ledger.energies(beam, 0.0, &st.q, &st.vf, &mut w.mv, ev.energy);
+    let mut drive = Drive::new(beam, &st.q, &init.v, &w.force);
+    let kinetic = beam.kinetic_energy(&st.vf, drive.velocity(), &mut w.mv);
+    let mut ledger = Ledger::new(beam, &st.q, ev.energy + kinetic);
+    let mut en = ledger.energies(beam, 0.0, &st.q, &st.vf, &drive, &mut w.mv, ev.energy);
+    scatter_velocity(beam, &st.vf, &drive, &mut v);
     observer(Frame {
         t: 0.0,
         q: &st.q,
@@ -780,10 +847,12 @@ fn generalized_alpha(
     let mut next_out = opts.output_interval;
     for step in 1..=n_steps {
         let t = step as f64 * h;
+        drive.kick(beam, t - h, &mut st.vf, &m, &mut w.mv);
         let out = alpha_step(
             beam,
             opts,
             rho,
+            t - h,
             h,
             MAX_CUTS,
             &mut st,
@@ -800,9 +869,10 @@ fn generalized_alpha(
         newton_iterations += out.iterations;
         ledger.dissipated += out.slip_work;
         ledger.non_potential += out.non_potential;
-        en = ledger.energies(beam, t, &st.q, &st.vf, &mut w.mv, out.elastic);
+        drive.end_step(beam, &st.q, &st.vf, &w.force);
+        en = ledger.energies(beam, t, &st.q, &st.vf, &drive, &mut w.mv, out.elastic);
         if t >= next_out - 1e-9 * h || step == n_steps {
-            scatter_velocity(beam, &st.vf, &mut v);
+            scatter_velocity(beam, &st.vf, &drive, &mut v);
             observer(Frame {
                 t,
                 q: &st.q,
@@ -815,7 +885,7 @@ fn generalized_alpha(
             }
         }
     }
-    scatter_velocity(beam, &st.vf, &mut v);
+    scatter_velocity(beam, &st.vf, &drive, &mut v);
     Ok(DynamicSummary {
         time_step: h,
         stable_step: None,

@@ -19,9 +19,10 @@
 //! # Section frame
 //!
 //! The section law takes the curvature vector in a section frame `(t, e_y, e_z)` (see
-//! `strand_core::section`). The frame at a point is the reference frame `(t0, e_y0, e_z0)`
-//! of the straight undeformed strand ([`SectionFrame`]) carried by the minimal rotation `R`
-//! that takes `t0` to the current tangent `t = a / |a|` (Rodrigues' formula):
+//! `strand_core::section`): wire `i` sits at `R_w (sin phi_i e_y + cos phi_i e_z)`, so `e_z` is
+//! the direction from which the wire phases are measured. A frame at a point is a reference
+//! frame `(t0, e_y0, e_z0)` ([`SectionFrame`]) carried by the minimal rotation `R` that takes
+//! `t0` to the current tangent `t = a / |a|` (Rodrigues' formula):
 //!
 //! ```text
 //! R v = (t0 . t) v + (t0 x t) x v + ((t0 x t) . v) / (1 + t0 . t) (t0 x t).
@@ -36,10 +37,44 @@
 //! ```
 //!
 //! linear in `b`. Their gradients and Hessians with respect to `y = (a, b)` (6 values,
-//! [`SpatialFirst`], [`SpatialSecond`]) include the frame's dependence on `a`. The frame is
-//! undefined for `t = -t0` (the strand folded back onto itself): below
-//! `1 + t0 . t =` [`MIN_ALIGNMENT`](crate::MIN_ALIGNMENT) the evaluation returns [`AncfError::AntiparallelTangent`].
-//! No division by `|a x b|` occurs, so the straight state is regular.
+//! [`SpatialFirst`], [`SpatialSecond`]) include the frame's dependence on `a`. The minimal
+//! rotation is undefined for `t = -t0`: below `1 + t0 . t =`
+//! [`MIN_ALIGNMENT`](crate::MIN_ALIGNMENT) the evaluation returns
+//! [`AncfError::AntiparallelTangent`]. No division by `|a x b|` occurs, so the straight state
+//! is regular.
+//!
+//! ## What fixes the section's turn about its axis
+//!
+//! The cable element has no torsion: nothing in its kinematics says how a section turns about
+//! the tangent. The beam ([`crate::beam`]) takes the section to turn *without spin about the
+//! tangent*, as a rod without torsional load does: every bending point keeps its own reference
+//! frame as state, and when a step (a time step, or a load step in statics) is accepted, the
+//! frame carried to the accepted tangent becomes the reference of the next step, like the slip
+//! state of the hysteretic law. Within a step the frame is a smooth function of the
+//! coordinates (the formulas above, with the committed frame as `(t0, e_y0, e_z0)`), so the
+//! forces have an exact analytic tangent; the committed frame is carried to the tangent it
+//! was committed at, so committing does not move the frame of the configuration it belongs
+//! to. The minimal rotation is singular only when the tangent at a point turns by half a turn
+//! within one step, so no configuration of the strand is singular. Consequences:
+//!
+//! * Holonomy: a section whose tangent goes round a closed loop comes back turned about the
+//!   tangent by the solid angle the loop encloses (parallel transport on the sphere of
+//!   directions): the section of a conical pendulum of half-angle `beta` turns by
+//!   `2 pi (1 - cos beta)` per revolution against the frame it started with. The wires' phases
+//!   relative to the bending plane follow that turn.
+//! * The frames of neighbouring points are carried independently, so in a general 3D motion
+//!   neighbouring sections can turn relative to each other (a twist that the wires' torsional
+//!   stiffness would resist in a real strand). It is neither resisted nor reported; motion in a
+//!   fixed plane turns no section about its axis, so planar results are unaffected.
+//! * The frame depends on the path of the tangent, and so, in 3D, slightly on the time or load
+//!   steps: the composition of a step's minimal rotations is the parallel transport along the
+//!   great-circle polygon through the accepted tangents, which differs from the transport along
+//!   the true path by the solid angle between them, of second order in the step.
+//! * Everything is covariant: a rigid rotation of the strand, its reference frames and its
+//!   loads gives the rotated motion.
+//!
+//! The initial reference frame has `t0` along the straight strand and `e_z0` along the
+//! scene's phase reference projected off `t0` ([`default_phase_reference`] when none is given).
 //!
 //! # Invariance
 //!
@@ -66,8 +101,8 @@ pub type SpatialVector = SVector<f64, 12>;
 /// Element-size matrix (12x12).
 pub type SpatialMatrix = SMatrix<f64, 12, 12>;
 
-/// Reference section frame `(t0, e_y0, e_z0)` of the straight undeformed strand: orthonormal
-/// and right-handed (`e_z0 = t0 x e_y0`).
+/// Reference section frame `(t0, e_y0, e_z0)` at a point: orthonormal and right-handed
+/// (`e_z0 = t0 x e_y0`); `e_z0` is the direction of phase zero.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SectionFrame {
     t0: Vector3<f64>,
@@ -99,17 +134,30 @@ impl SectionFrame {
         Ok(Self { t0, e_y0, e_z0 })
     }
 
-    /// Frame for a strand along `t0` with `e_z0` the global Z projected off `t0` (for a
-    /// strand along X: `e_y0 = Y`, `e_z0 = Z`, the planar convention); for a strand within
-    /// 45 degrees of Z, `e_z0` is the global Y projected off `t0` instead.
+    /// Frame for a strand along `t0` with the default phase reference
+    /// ([`default_phase_reference`]).
     pub fn along(t0: Vector3<f64>) -> Result<Self, AncfError> {
-        let tn = t0.norm();
-        let hint = if tn > 0.0 && t0.z.abs() > std::f64::consts::FRAC_1_SQRT_2 * tn {
-            Vector3::y()
-        } else {
-            Vector3::z()
-        };
-        Self::new(t0, hint)
+        Self::new(t0, default_phase_reference(&t0))
+    }
+
+    /// Values of a frame kept as state: `t0` and `e_z0` ([`Self::STATE_LEN`] values).
+    pub const STATE_LEN: usize = 6;
+
+    /// The frame kept as state `(t0, e_z0)` (see [`Self::write_state`]); the pair is
+    /// orthonormalized again, so round-off does not accumulate over steps.
+    #[inline]
+    pub fn from_state(state: &[f64]) -> Result<Self, AncfError> {
+        Self::new(
+            Vector3::new(state[0], state[1], state[2]),
+            Vector3::new(state[3], state[4], state[5]),
+        )
+    }
+
+    /// Writes the frame with tangent `t` and phase axis `e_z` as state (6 values).
+    #[inline]
+    pub fn write_state(t: &Vector3<f64>, e_z: &Vector3<f64>, out: &mut [f64]) {
+        out[..3].copy_from_slice(t.as_slice());
+        out[3..6].copy_from_slice(e_z.as_slice());
     }
 
     /// Reference tangent `t0`.
@@ -137,6 +185,26 @@ impl SectionFrame {
     }
 }
 
+/// The direction of phase zero at x = 0 when a scene gives none, for a strand along `t0`: the
+/// global Z axis projected off `t0`. For a strand in the XY plane that is Z itself, the
+/// convention of the planar element (phases of eq. (36) measured from the out-of-plane axis,
+/// SPEC 2). For a strand along Z, where Z has no part off the direction, it is the global X
+/// axis; close to Z the projection turns quickly with the direction, so such scenes should
+/// give their phase reference.
+pub fn default_phase_reference(t0: &Vector3<f64>) -> Vector3<f64> {
+    let n = t0.norm();
+    if n.is_nan() || n <= 0.0 {
+        return Vector3::z();
+    }
+    let t = t0 / n;
+    let z = Vector3::z() - t * t.z;
+    if z.norm() > 1e-12 {
+        z
+    } else {
+        Vector3::x() - t * t.x
+    }
+}
+
 /// Local kinematic variables at one point: `r'` and `r''`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpatialPoint {
@@ -144,6 +212,40 @@ pub struct SpatialPoint {
     pub dr: Vector3<f64>,
     /// Second derivative `r'' = d^2 r/dx^2`.
     pub ddr: Vector3<f64>,
+}
+
+/// The axial strain at a point: `eps = |r'| - 1` with gradient `t` with respect to `r'`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpatialAxial {
+    /// Axial strain.
+    pub eps: f64,
+    /// Unit tangent `t = r' / |r'|`, the gradient of `eps` with respect to `r'`.
+    pub tangent: Vector3<f64>,
+    /// `|r'|`.
+    pub stretch: f64,
+}
+
+impl SpatialAxial {
+    /// `d^2 eps / dr'^2 = (I - t t^T) / |r'|`.
+    #[inline]
+    pub fn hessian(&self) -> Matrix3<f64> {
+        (Matrix3::identity() - self.tangent * self.tangent.transpose()) / self.stretch
+    }
+
+    /// `d eps / dy` with respect to `y = (r', r'')` (the last three entries are zero).
+    #[inline]
+    pub fn gradient(&self) -> Vector6<f64> {
+        let t = &self.tangent;
+        Vector6::new(t.x, t.y, t.z, 0.0, 0.0, 0.0)
+    }
+
+    /// `d^2 eps / dy^2` (only the `r'` block is non-zero).
+    #[inline]
+    pub fn hessian6(&self) -> Matrix6<f64> {
+        let mut h = Matrix6::zeros();
+        h.fixed_view_mut::<3, 3>(0, 0).copy_from(&self.hessian());
+        h
+    }
 }
 
 /// Strain, curvature components and their gradients with respect to `y = (r', r'')`.
@@ -236,6 +338,17 @@ impl SpatialPoint {
     #[inline]
     pub fn strain(&self) -> Result<f64, AncfError> {
         Ok(self.stretch()? - 1.0)
+    }
+
+    /// Axial strain, unit tangent and stretch (no section frame needed).
+    #[inline]
+    pub fn axial(&self) -> Result<SpatialAxial, AncfError> {
+        let n = self.stretch()?;
+        Ok(SpatialAxial {
+            eps: n - 1.0,
+            tangent: self.dr / n,
+            stretch: n,
+        })
     }
 
     /// Global curvature vector per reference length `k = r' x r'' / |r'|^2`; its norm is the

@@ -39,7 +39,7 @@ fn largest_eigenvalue(beam: &Beam) -> Result<f64, BeamError> {
     }
     let b = beam.bandwidth();
     let mut k = BandMatrix::zeros(n, b, b);
-    let slip = vec![0.0; beam.state_len()];
+    let slip = beam.initial_state();
     let mut trial = slip.clone();
     let mut force = vec![0.0; beam.coords()];
     beam.internal(
@@ -169,6 +169,7 @@ mod tests {
                 gravity: [0.0, -9.8065, 0.0],
                 start: Some(Support::Pinned),
                 end,
+                ..Default::default()
             },
             SectionLaw::new(&s, LawKind::Hysteretic),
         )
@@ -180,7 +181,7 @@ mod tests {
         let n = b.dofs();
         let w = b.bandwidth();
         let mut k = BandMatrix::zeros(n, w, w);
-        let slip = vec![0.0; b.state_len()];
+        let slip = b.initial_state();
         let mut trial = slip.clone();
         let mut force = vec![0.0; b.coords()];
         b.internal(

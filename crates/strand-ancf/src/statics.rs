@@ -4,8 +4,9 @@
 //! analytic tangent with a backtracking line search on the residual norm. A step that fails
 //! (no convergence, a singular tangent, a degenerate element) is cut in half and retried from
 //! the last converged state; a step that converged quickly lets the next one grow. The
-//! `hysteretic` law's slip state is committed after every converged step, so the static path
-//! follows the load steps.
+//! `hysteretic` law's slip state (and the spatial element's section frames) is committed after
+//! every converged step, so the static path follows the load steps. Moving supports take the
+//! last row of their tables with the load factor.
 
 use strand_core::LawKind;
 
@@ -17,7 +18,8 @@ use crate::beam::{Beam, BeamError, PointState};
 pub struct StaticOptions {
     /// Initial number of equal load steps.
     pub load_steps: usize,
-    /// Convergence: residual norm below `tolerance` times the norm of the full load, or a full
+    /// Convergence: residual norm below `tolerance` times the norm of the full load (the dead
+    /// load, or the equivalent load of a moving support's displacement if larger), or a full
     /// Newton correction below `increment` times the strand length (the residual of stiff
     /// axial springs has a round-off floor of about eps_mach EA) with the residual below 1e-6
     /// of the load.
@@ -47,7 +49,7 @@ impl Default for StaticOptions {
 pub struct StaticSolution {
     /// Coordinates, all of them.
     pub q: Vec<f64>,
-    /// Committed slip state of the law.
+    /// Committed per-point state (the law's slip state and the section frames).
     pub slip: Vec<f64>,
     /// State at every bending point.
     pub points: Vec<PointState>,
@@ -144,17 +146,29 @@ pub fn solve_static(
         r: vec![0.0; n],
         dq: vec![0.0; n],
         s: vec![0.0; n],
-        trial: vec![0.0; beam.state_len()],
+        trial: beam.initial_state(),
         q_try: beam.reference().to_vec(),
         k: BandMatrix::zeros(n, b, b),
         solver: BandSolver::default(),
     };
     let mut g_free = vec![0.0; n];
     gather_free(beam, beam.gravity_force(), &mut g_free);
-    let load_norm = norm(&g_free).max(f64::MIN_POSITIVE);
+    let mut load_norm = norm(&g_free);
+    if beam.has_moving_supports() {
+        // A moving support loads the strand too: the elastic force of its displacement with
+        // the rest of the strand straight, the equivalent load of the displacement (taken at
+        // a small fraction of it, where the strand responds linearly, and scaled up).
+        let fraction = 1e-6;
+        beam.move_supports_static(&mut w.q_try, fraction);
+        let slip = beam.initial_state();
+        let r = residual(beam, &mut w, &slip, &g_free, 0.0, false)?;
+        load_norm = load_norm.max(r / fraction);
+        w.q_try.copy_from_slice(beam.reference());
+    }
+    let load_norm = load_norm.max(f64::MIN_POSITIVE);
 
     let mut q = beam.reference().to_vec();
-    let mut slip = vec![0.0; beam.state_len()];
+    let mut slip = beam.initial_state();
     let mut lambda = 0.0;
     let mut step = 1.0 / opts.load_steps.max(1) as f64;
     let (mut steps, mut iterations, mut cuts) = (0, 0, 0);
@@ -162,6 +176,7 @@ pub fn solve_static(
     while lambda < 1.0 {
         let target = (lambda + step).min(1.0);
         w.q_try.copy_from_slice(&q);
+        beam.move_supports_static(&mut w.q_try, target);
         match newton(beam, opts, &mut w, &slip, &g_free, target, load_norm) {
             Ok((its, res)) => {
                 iterations += its;

@@ -37,6 +37,7 @@ fn pendulum_of(s: &Strand, kind: LawKind, elements: usize) -> Beam {
             gravity: [0.0, -9.8065, 0.0],
             start: Some(Support::Pinned),
             end: None,
+            ..Default::default()
         },
         SectionLaw::new(s, kind),
     )

@@ -142,6 +142,7 @@ fn vector_mass_is_the_band_mass() {
                     gravity: [0.0, -9.81, 0.0],
                     start,
                     end,
+                    ..Default::default()
                 },
                 SectionLaw::new(&s, LawKind::Constant),
             )

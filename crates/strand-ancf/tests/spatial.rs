@@ -214,9 +214,17 @@ fn antiparallel_and_degenerate_tangents_are_reported() {
     ));
     assert!(SectionFrame::new(Vector3::x(), Vector3::x() * 2.0).is_err());
     assert!(SectionFrame::new(Vector3::zeros(), Vector3::z()).is_err());
-    // Strands along Z get a valid default frame.
+    // The default phase reference: Z projected off the direction; X for a strand along Z.
     let fz = SectionFrame::along(Vector3::z()).unwrap();
-    assert!((fz.e_z0() - Vector3::y()).norm() < 1e-15);
+    assert!((fz.e_z0() - Vector3::x()).norm() < 1e-15);
+    let fm = SectionFrame::along(-Vector3::z()).unwrap();
+    assert!((fm.e_z0() - Vector3::x()).norm() < 1e-15);
+    let d = Vector3::new(0.0, 1.0, 1.0).normalize();
+    let f = SectionFrame::along(d).unwrap();
+    assert!((f.e_z0() - Vector3::new(0.0, -1.0, 1.0).normalize()).norm() < 1e-15);
+    for d in [Vector3::x(), Vector3::new(0.6, -0.8, 0.0)] {
+        assert_eq!(SectionFrame::along(d).unwrap().e_z0(), Vector3::z());
+    }
 }
 
 fn element_from(rng: &mut Rng, l: f64) -> SpatialCoords {

@@ -1,6 +1,7 @@
 //! The spatial beam: analytic tangent against finite differences in a 3D bent state (all
-//! laws), zero force under a rigid motion, and the same answers as the planar beam on planar
-//! scenes (statics and dynamics).
+//! laws; section frames of the straight strand and frames committed at another state), zero
+//! force under a rigid motion, and the same answers as the planar beam on planar scenes
+//! (statics and dynamics).
 
 use strand_ancf::band::BandMatrix;
 use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support};
@@ -25,6 +26,7 @@ fn beam(s: &Strand, kind: LawKind, element: ElementKind, n: usize, support: Supp
             gravity: [0.0, -9.8, 0.0],
             start: Some(support),
             end: None,
+            ..Default::default()
         },
         SectionLaw::new(s, kind),
     )
@@ -58,12 +60,27 @@ fn spatial_tangent_matches_finite_differences() {
         LawKind::Paper,
         LawKind::Hysteretic,
     ] {
-        for k in [0.3, 3.0] {
+        for (k, committed) in [(0.3, false), (3.0, false), (3.0, true)] {
             let b = beam(&s, kind, ElementKind::Spatial, 3, Support::Clamped);
             let n = b.coords();
             let q = bent(&b, k);
-            let slip = vec![0.0; b.state_len()];
+            let mut slip = b.initial_state();
             let mut trial = slip.clone();
+            if committed {
+                // Frames (and slip) committed at another bent state, turned about the strand
+                // axis: the current frames differ from the initial ones by the holonomy of
+                // X -> committed -> current tangent.
+                let turn = nalgebra::Rotation3::from_axis_angle(&nalgebra::Vector3::x_axis(), 1.2);
+                let mut other = bent(&b, 0.8 * k);
+                for c in other.chunks_exact_mut(3) {
+                    let v = turn * nalgebra::Vector3::new(c[0], c[1], c[2]);
+                    c.copy_from_slice(v.as_slice());
+                }
+                let mut f = vec![0.0; n];
+                b.internal(&other, &slip, &mut trial, &mut f, None, None)
+                    .unwrap();
+                slip.copy_from_slice(&trial);
+            }
             let mut f0 = vec![0.0; n];
             let mut t = BandMatrix::zeros(b.dofs(), b.bandwidth(), b.bandwidth());
             let base = b
@@ -102,7 +119,8 @@ fn spatial_tangent_matches_finite_differences() {
                 }
             }
             println!(
-                "spatial {kind} k {k}: worst {worst:.2e} of the allowed, skipped {skipped}, {} slipping",
+                "spatial {kind} k {k} committed {committed}: worst {worst:.2e} of the allowed, \
+                 skipped {skipped}, {} slipping",
                 base.slipping
             );
             assert!(skipped < free.len() / 2);
@@ -131,7 +149,12 @@ fn spatial_rigid_motion_gives_no_force() {
         q[6 * j..6 * j + 6].copy_from_slice(&[r.x + 1.0, r.y - 2.0, r.z, d.x, d.y, d.z]);
     }
     let mut f = vec![0.0; q.len()];
-    let e = b.internal(&q, &[], &mut [], &mut f, None, None).unwrap();
+    let state = b.initial_state();
+    let mut trial = state.clone();
+    assert!(b.internal(&q, &[], &mut [], &mut f, None, None).is_err());
+    let e = b
+        .internal(&q, &state, &mut trial, &mut f, None, None)
+        .unwrap();
     let fmax = f.iter().fold(0.0f64, |a, v| a.max(v.abs()));
     assert!(
         fmax < 1e-9 && e.energy.abs() < 1e-15,

@@ -25,6 +25,7 @@ fn cantilever(law: SectionLaw, elements: usize, mu: f64, g: f64) -> Beam {
             gravity: [0.0, -g, 0.0],
             start: Some(Support::Clamped),
             end: None,
+            ..Default::default()
         },
         law,
     )
@@ -270,6 +271,7 @@ fn supports_at_both_ends() {
                 gravity: [0.0, -q, 0.0],
                 start: Some(support),
                 end: Some(support),
+                ..Default::default()
             },
             law,
         )

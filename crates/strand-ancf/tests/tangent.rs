@@ -30,6 +30,7 @@ fn supported(kind: LawKind, start: Option<Support>, end: Option<Support>) -> Bea
             gravity: [0.0, -9.81, 0.0],
             start,
             end,
+            ..Default::default()
         },
         SectionLaw::new(&s, kind),
     )
@@ -71,7 +72,7 @@ fn tangent_matches_finite_differences() {
             for (i, v) in q.iter_mut().enumerate() {
                 *v += 1e-4 * ((i as f64) * 1.7).sin();
             }
-            let slip = vec![0.0; b.state_len()];
+            let slip = b.initial_state();
             let mut trial = slip.clone();
             let mut f0 = vec![0.0; n];
             let mut t = BandMatrix::zeros(b.dofs(), b.bandwidth(), b.bandwidth());
@@ -213,7 +214,7 @@ fn rigid_motion_gives_no_force_or_energy() {
                 s * dx + c * dy,
             ]);
         }
-        let slip = vec![0.0; b.state_len()];
+        let slip = b.initial_state();
         let mut trial = slip.clone();
         let mut f = vec![0.0; n];
         let e = b

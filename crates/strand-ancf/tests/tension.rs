@@ -26,6 +26,7 @@ fn cantilever(law: SectionLaw, elements: usize, g: f64) -> Beam {
             gravity: [0.0, -g, 0.0],
             start: Some(Support::Clamped),
             end: None,
+            ..Default::default()
         },
         law,
     )

@@ -7,7 +7,8 @@
 //! * [`segment`]: rigid cylinders and their poses; [`so3`]: rotation helpers.
 //! * [`chain`]: a wire laid as a segment chain; [`joint`]: the joint springs.
 //! * [`model`]: wires, supports, gravity, state, loads and energies.
-//! * [`statics`]: Newton-Raphson static equilibrium; [`dynamics`]: symplectic time stepping.
+//! * [`statics`]: Newton-Raphson static equilibrium; [`dynamics`]: symplectic time stepping;
+//!   [`motion`]: moving supports and rigid initial velocities.
 //! * [`contact`]: wire-to-core contact (penalty and Cundall-Strack friction with history),
 //!   added to a model by [`FineModel::add_contacts`].
 //! * [`bending`]: the virtual bending test (moment against curvature under tension).
@@ -36,6 +37,7 @@ pub mod contact;
 pub mod dynamics;
 pub mod joint;
 pub mod model;
+pub mod motion;
 pub mod segment;
 pub mod settle;
 pub mod so3;

@@ -329,6 +329,29 @@ impl FineModel {
         }
     }
 
+    /// Adds a constant point force `force` (N, scaled by the load factor like gravity) at the
+    /// strand coordinate `s` (m): on the core, split linearly between the two segments whose
+    /// rest centres enclose `s` (all on the end segment beyond the last centre), so its
+    /// resultant and its moment about `s` are those of the point force.
+    pub fn add_point_force(&mut self, s: f64, force: Vector3<f64>) {
+        let core = &mut self.wires[0];
+        let n = core.chain.len();
+        if core.external.is_empty() {
+            core.external = vec![Vector3::zeros(); n];
+        }
+        let x: Vec<f64> = core.chain.rest.iter().map(|p| p.position.x).collect();
+        let k = x.partition_point(|&c| c <= s);
+        if k == 0 {
+            core.external[0] += force;
+        } else if k == n {
+            core.external[n - 1] += force;
+        } else {
+            let a = (s - x[k - 1]) / (x[k] - x[k - 1]);
+            core.external[k - 1] += force * (1.0 - a);
+            core.external[k] += force * a;
+        }
+    }
+
     /// Total number of contact points.
     pub fn contact_count(&self) -> usize {
         self.wires.iter().map(|w| w.contacts.len()).sum()

@@ -177,6 +177,14 @@ impl Segment {
             + n * (h1 * (1.0 / self.axial_inertia - 1.0 / self.transverse_inertia))
     }
 
+    /// World-frame angular momentum (kg m^2/s) for the world-frame angular velocity `omega`
+    /// (the inverse of [`Self::angular_velocity`]): `I_2 omega + (I_1 - I_2) n (n . omega)`.
+    pub fn angular_momentum(&self, pose: &Pose, omega: &Vector3<f64>) -> Vector3<f64> {
+        let n = pose.tangent();
+        omega * self.transverse_inertia
+            + n * (n.dot(omega) * (self.axial_inertia - self.transverse_inertia))
+    }
+
     /// Exact torque-free motion of the axisymmetric body over `dt` (s) with constant
     /// world-frame angular momentum `h`: the rotation becomes
     /// `exp(dt h / I_2) R exp(dt h_1 (1/I_1 - 1/I_2) e_1)`.

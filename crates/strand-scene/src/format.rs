@@ -111,15 +111,32 @@ pub struct SupportFile {
     pub at: String,
     /// `clamped` (position and tangent fixed) or `pinned` (position fixed).
     pub kind: String,
+    /// Prescribed displacement of the supported end: rows `[t, dx, dy, dz]` (s, m), linear
+    /// between rows, from zero at t = 0; in statics the last row is applied with the load
+    /// steps.
+    #[serde(default)]
+    pub motion: Option<Vec<[f64; 4]>>,
 }
 
-/// Initial state.
+/// Initial state: the strand starts straight from the origin.
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct InitialFile {
     /// Direction of the straight strand from the origin (normalised), default +X.
     #[serde(default)]
     pub direction: Option<[f64; 3]>,
+    /// The direction at x = 0 from which wire phases are measured (phi = 0), projected off
+    /// the direction; default the global Z projected off the direction (X for a strand along
+    /// Z).
+    #[serde(default)]
+    pub phase_reference: Option<[f64; 3]>,
+    /// Uniform initial velocity (m/s), dynamics only.
+    #[serde(default)]
+    pub velocity: Option<[f64; 3]>,
+    /// Initial angular velocity (rad/s) of a rigid rotation about the origin, `v = w x r`,
+    /// dynamics only.
+    #[serde(default)]
+    pub angular_velocity: Option<[f64; 3]>,
 }
 
 /// Loads.
@@ -129,6 +146,19 @@ pub struct LoadsFile {
     /// Gravitational acceleration (m/s^2); the load per length is the mass per length times it.
     #[serde(default)]
     pub gravity: Option<[f64; 3]>,
+    /// Constant point forces (load-stepped in statics).
+    #[serde(default)]
+    pub points: Option<Vec<PointLoadFile>>,
+}
+
+/// A constant point force on the strand.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct PointLoadFile {
+    /// Material coordinate from the start (m), in [0, L].
+    pub s: f64,
+    /// Force (N).
+    pub force: [f64; 3],
 }
 
 /// Analysis: `kind` is `static` or `dynamic`; the other fields belong to one of them.

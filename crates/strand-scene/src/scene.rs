@@ -11,6 +11,9 @@ use strand_core::{
     SectionOptions, Strand, StrandSpec, WireSpec,
 };
 
+use nalgebra::Vector3;
+use strand_ancf::spatial::default_phase_reference;
+
 use crate::format::{
     AnalysisFile, BeamModelFile, FineModelFile, LayerFile, SceneFile, SectionFile, WireFile,
 };
@@ -62,12 +65,24 @@ pub enum SupportKind {
 }
 
 /// A support.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Support {
     /// Where.
     pub at: End,
     /// How.
     pub kind: SupportKind,
+    /// Prescribed displacement of the end, rows `[t, dx, dy, dz]` (s, m) with increasing
+    /// times, linear between rows and from zero at t = 0; `None` for a fixed support.
+    pub motion: Option<Vec<[f64; 4]>>,
+}
+
+/// A constant point force.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointForce {
+    /// Material coordinate from the start (m).
+    pub s: f64,
+    /// Force (N).
+    pub force: [f64; 3],
 }
 
 /// Time integrator of a dynamic analysis.
@@ -154,8 +169,18 @@ pub struct Scene {
     pub supports: Vec<Support>,
     /// Unit direction of the initially straight strand.
     pub direction: [f64; 3],
+    /// The direction at x = 0 from which wire phases are measured (unit, orthogonal to the
+    /// direction): the scene's `initial.phase_reference` projected off the direction, or the
+    /// default ([`strand_ancf::spatial::default_phase_reference`]).
+    pub phase_reference: [f64; 3],
+    /// Uniform initial velocity (m/s).
+    pub velocity: [f64; 3],
+    /// Initial angular velocity about the origin (rad/s): `v = w x r`.
+    pub angular_velocity: [f64; 3],
     /// Gravitational acceleration (m/s^2).
     pub gravity: [f64; 3],
+    /// Constant point forces.
+    pub point_forces: Vec<PointForce>,
     /// Analysis.
     pub analysis: Analysis,
     /// Models to run.
@@ -241,7 +266,11 @@ impl Scene {
                     "this end already has a support",
                 ));
             }
-            supports.push(Support { at, kind });
+            let motion = match &s.motion {
+                None => None,
+                Some(rows) => Some(motion(&format!("supports[{i}].motion"), rows)?),
+            };
+            supports.push(Support { at, kind, motion });
         }
 
         let direction = match file.initial.as_ref().and_then(|i| i.direction) {
@@ -256,6 +285,28 @@ impl Scene {
                 [d[0] / n, d[1] / n, d[2] / n]
             }
         };
+        let initial = file.initial.as_ref();
+        let phase_reference = match initial.and_then(|i| i.phase_reference) {
+            None => default_phase_reference(&Vector3::from(direction)).normalize(),
+            Some(r) => {
+                let p = "initial.phase_reference";
+                finite_vec(p, &r)?;
+                let (d, r) = (Vector3::from(direction), Vector3::from(r));
+                let off = r - d * d.dot(&r);
+                if off.norm() <= 1e-9 * r.norm() {
+                    return Err(SceneError::new(
+                        p,
+                        "must have a part off initial.direction (it is zero or parallel to it)",
+                    ));
+                }
+                off.normalize()
+            }
+        }
+        .into();
+        let velocity = initial.and_then(|i| i.velocity).unwrap_or([0.0; 3]);
+        finite_vec("initial.velocity", &velocity)?;
+        let angular_velocity = initial.and_then(|i| i.angular_velocity).unwrap_or([0.0; 3]);
+        finite_vec("initial.angular_velocity", &angular_velocity)?;
         let gravity = match file.loads.as_ref().and_then(|l| l.gravity) {
             None => [0.0; 3],
             Some(g) => {
@@ -263,6 +314,27 @@ impl Scene {
                 g
             }
         };
+        let mut point_forces = Vec::new();
+        for (k, p) in file
+            .loads
+            .as_ref()
+            .and_then(|l| l.points.as_ref())
+            .into_iter()
+            .flatten()
+            .enumerate()
+        {
+            let path = format!("loads.points[{k}]");
+            let s = finite(&format!("{path}.s"), p.s)?;
+            let length = strand.length();
+            if !(0.0..=length).contains(&s) {
+                return Err(SceneError::new(
+                    format!("{path}.s"),
+                    format!("must be in [0, {length}] (metres from the start), got {s}"),
+                ));
+            }
+            finite_vec(&format!("{path}.force"), &p.force)?;
+            point_forces.push(PointForce { s, force: p.force });
+        }
         let analysis = analysis(&file.analysis)?;
         // A dynamic run defaults to the only energetically consistent stick/slip law: the
         // moment of `continuous` and `paper` depends on the tension without a potential, so
@@ -271,6 +343,19 @@ impl Scene {
             Analysis::Static { .. } => LawKind::Continuous,
             Analysis::Dynamic(_) => LawKind::Hysteretic,
         });
+        if matches!(analysis, Analysis::Static { .. }) {
+            for (field, v) in [
+                ("velocity", velocity),
+                ("angular_velocity", angular_velocity),
+            ] {
+                if v != [0.0; 3] {
+                    return Err(SceneError::new(
+                        format!("initial.{field}"),
+                        "only for a dynamic analysis (a static one has no velocity)",
+                    ));
+                }
+            }
+        }
         if matches!(analysis, Analysis::Static { .. }) && supports.is_empty() {
             return Err(SceneError::new(
                 "supports",
@@ -278,6 +363,17 @@ impl Scene {
             ));
         }
         let models = models(&file, &strand)?;
+        if models.fine.is_some()
+            && matches!(analysis, Analysis::Static { .. })
+            && supports.iter().any(|s| s.motion.is_some())
+        {
+            return Err(SceneError::new(
+                "models.fine",
+                "the fine model cannot run a static analysis with a moving support \
+                 (supports[].motion): its static solvers step gravity and forces, not the \
+                 supports; run the fine model in a dynamic analysis",
+            ));
+        }
         Ok(Scene {
             name: file.name.clone(),
             strand,
@@ -285,18 +381,81 @@ impl Scene {
             section,
             supports,
             direction,
+            phase_reference,
+            velocity,
+            angular_velocity,
             gravity,
+            point_forces,
             analysis,
             models,
             file,
         })
     }
 
-    /// Whether the scene stays in the global XY plane (strand direction and gravity have no Z
-    /// component), so the planar element can be used.
+    /// Whether the scene stays in the global XY plane, so the planar element can be used: the
+    /// direction, gravity, initial velocity, point forces and support motions have no Z
+    /// component, the initial rotation is about Z, and the wire phases are measured from +Z
+    /// (the planar element's convention).
     pub fn is_planar(&self) -> bool {
-        self.direction[2] == 0.0 && self.gravity[2] == 0.0
+        let w = self.angular_velocity;
+        self.direction[2] == 0.0
+            && self.gravity[2] == 0.0
+            && self.velocity[2] == 0.0
+            && w[0] == 0.0
+            && w[1] == 0.0
+            && self.phase_reference == [0.0, 0.0, 1.0]
+            && self.point_forces.iter().all(|p| p.force[2] == 0.0)
+            && self
+                .supports
+                .iter()
+                .flat_map(|s| s.motion.iter().flatten())
+                .all(|r| r[3] == 0.0)
     }
+
+    /// Whether the strand starts moving: a non-zero initial velocity or angular velocity.
+    pub fn starts_moving(&self) -> bool {
+        self.velocity != [0.0; 3] || self.angular_velocity != [0.0; 3]
+    }
+}
+
+/// A support's motion table at JSON path `path`: finite values, times non-negative and
+/// increasing, zero displacement at t = 0.
+fn motion(path: &str, rows: &[[f64; 4]]) -> Result<Vec<[f64; 4]>, SceneError> {
+    if rows.is_empty() {
+        return Err(SceneError::new(
+            path,
+            "needs at least one row [t, dx, dy, dz]",
+        ));
+    }
+    let mut last = None;
+    for (r, row) in rows.iter().enumerate() {
+        finite_vec(&format!("{path}[{r}]"), row)?;
+        let t = row[0];
+        let p = format!("{path}[{r}][0]");
+        if t < 0.0 {
+            return Err(SceneError::new(
+                p,
+                format!("time must not be negative, got {t}"),
+            ));
+        }
+        if let Some(l) = last
+            && t <= l
+        {
+            return Err(SceneError::new(
+                p,
+                format!("times must increase: {t} s after {l} s"),
+            ));
+        }
+        if t == 0.0 && row[1..] != [0.0; 3] {
+            return Err(SceneError::new(
+                format!("{path}[{r}]"),
+                "the displacement at t = 0 must be zero (the strand starts straight at its \
+                 supports)",
+            ));
+        }
+        last = Some(t);
+    }
+    Ok(rows.to_vec())
 }
 
 fn finite(path: &str, v: f64) -> Result<f64, SceneError> {

@@ -205,3 +205,182 @@ fn defaults() {
     assert_eq!(scene.strand.friction(), 0.3);
     assert!(scene.is_planar());
 }
+
+/// Sets `pointer` in `scene` to `v`, creating a missing parent object.
+fn with(mut scene: Value, pointer: &str, v: Value) -> Value {
+    let (parent, key) = pointer.rsplit_once('/').unwrap();
+    if scene.pointer(parent).is_none() {
+        let (grand, name) = parent.rsplit_once('/').unwrap();
+        scene.pointer_mut(grand).unwrap()[name] = json!({});
+    }
+    match scene.pointer_mut(parent).unwrap() {
+        Value::Array(a) => a[key.parse::<usize>().unwrap()] = v,
+        p => p[key] = v,
+    }
+    scene
+}
+
+fn reject_in(scene: Value, path: &str, contains: &str) {
+    let e = Scene::parse(&scene.to_string()).expect_err(&format!("{path} should be rejected"));
+    assert_path(&e, path);
+    assert!(e.message.contains(contains), "{e}");
+}
+
+/// A dynamic version of the good scene.
+fn dynamic() -> Value {
+    with(
+        good(),
+        "/analysis",
+        json!({"kind": "dynamic", "duration": 0.1, "integrator": "generalized-alpha",
+               "time_step": 1e-3}),
+    )
+}
+
+#[test]
+fn motion_and_loads_fields_are_checked_with_their_paths() {
+    // Initial velocities only in dynamics; a number out of range is a parse error with its
+    // path.
+    reject_in(
+        with(good(), "/initial/velocity", json!([1.0, 0.0, 0.0])),
+        "initial.velocity",
+        "dynamic",
+    );
+    reject_in(
+        with(good(), "/initial/angular_velocity", json!([0.0, 0.0, 2.0])),
+        "initial.angular_velocity",
+        "dynamic",
+    );
+    let text = with(dynamic(), "/initial/velocity", json!([1.0, 0.0, 7.5]))
+        .to_string()
+        .replace("7.5", "1e999");
+    assert_path(&Scene::parse(&text).unwrap_err(), "initial.velocity[2]");
+    // The phase reference needs a part off the direction.
+    reject_in(
+        with(good(), "/initial/phase_reference", json!([2.0, 0.0, 0.0])),
+        "initial.phase_reference",
+        "parallel",
+    );
+    reject_in(
+        with(good(), "/initial/phase_reference", json!([0.0, 0.0, 0.0])),
+        "initial.phase_reference",
+        "parallel",
+    );
+    // Point forces: on the strand, finite.
+    reject_in(
+        with(
+            good(),
+            "/loads/points",
+            json!([{"s": 0.5, "force": [0.0, 1.0, 0.0]}]),
+        ),
+        "loads.points[0].s",
+        "[0, 0.4]",
+    );
+    reject_in(
+        with(
+            good(),
+            "/loads/points",
+            json!([{"s": 0.1, "force": [0.0, 1.0, 0.0]}, {"s": -0.1, "force": [0.0, 0.0, 0.0]}]),
+        ),
+        "loads.points[1].s",
+        "[0, 0.4]",
+    );
+    reject_in(
+        with(
+            good(),
+            "/loads/points",
+            json!([{"s": 0.1, "force": [0.0, 1.0]}]),
+        ),
+        "loads.points[0].force",
+        "",
+    );
+    reject_in(
+        with(
+            good(),
+            "/loads/points",
+            json!([{"s": 0.1, "forces": [0.0, 1.0, 0.0]}]),
+        ),
+        "loads.points[0].forces",
+        "unknown field",
+    );
+    // Support motion tables: increasing times, finite, starting straight.
+    reject_in(
+        with(good(), "/supports/0/motion", json!([])),
+        "supports[0].motion",
+        "at least one row",
+    );
+    reject_in(
+        with(
+            good(),
+            "/supports/0/motion",
+            json!([[0.5, 0.0, 0.0, 0.0], [0.5, 0.1, 0.0, 0.0]]),
+        ),
+        "supports[0].motion[1][0]",
+        "increase",
+    );
+    reject_in(
+        with(good(), "/supports/0/motion", json!([[-1.0, 0.0, 0.0, 0.0]])),
+        "supports[0].motion[0][0]",
+        "negative",
+    );
+    reject_in(
+        with(good(), "/supports/0/motion", json!([[0.0, 0.1, 0.0, 0.0]])),
+        "supports[0].motion[0]",
+        "t = 0",
+    );
+    reject_in(
+        with(good(), "/supports/0/motion", json!([[1.0, 0.1, 0.0]])),
+        "supports[0].motion[0]",
+        "",
+    );
+    // The fine model refuses a moving support in statics, by name.
+    let mut s = with(good(), "/supports/0/motion", json!([[1.0, 0.01, 0.0, 0.0]]));
+    s["models"]["fine"] = json!({"segments_per_wire": 20});
+    reject_in(s, "models.fine", "moving support");
+}
+
+/// A scene is planar only if every field keeps it in the XY plane with phases from +Z.
+#[test]
+fn planar_only_if_everything_stays_in_the_plane() {
+    let planar = |s: Value| Scene::parse(&s.to_string()).unwrap().is_planar();
+    assert!(planar(dynamic()));
+    assert!(planar(with(
+        dynamic(),
+        "/initial/velocity",
+        json!([1.0, -2.0, 0.0])
+    )));
+    assert!(planar(with(
+        dynamic(),
+        "/initial/angular_velocity",
+        json!([0.0, 0.0, 3.0])
+    )));
+    assert!(planar(with(
+        dynamic(),
+        "/initial/phase_reference",
+        json!([0.3, 0.0, 2.0])
+    )));
+    for (ptr, v) in [
+        ("/initial/velocity", json!([0.0, 0.0, 0.1])),
+        ("/initial/angular_velocity", json!([0.0, 1.0, 0.0])),
+        ("/initial/phase_reference", json!([0.0, 1.0, 0.0])),
+        ("/initial/phase_reference", json!([0.0, 0.0, -1.0])),
+        (
+            "/loads/points",
+            json!([{"s": 0.1, "force": [0.0, 0.0, 1.0]}]),
+        ),
+        ("/supports/0/motion", json!([[1.0, 0.0, 0.0, 0.01]])),
+        ("/initial/direction", json!([1.0, 0.0, 0.1])),
+    ] {
+        assert!(!planar(with(dynamic(), ptr, v.clone())), "{ptr} {v}");
+    }
+    // The default phase reference: Z projected off the direction, X along Z.
+    let r = |d: Value| {
+        Scene::parse(&with(good(), "/initial/direction", d).to_string())
+            .unwrap()
+            .phase_reference
+    };
+    assert_eq!(r(json!([0.0, 1.0, 0.0])), [0.0, 0.0, 1.0]);
+    assert_eq!(r(json!([0.0, 0.0, -3.0])), [1.0, 0.0, 0.0]);
+    let s = r(json!([1.0, 0.0, 1.0]));
+    let h = 0.5f64.sqrt();
+    assert!((s[0] + h).abs() < 1e-15 && s[1] == 0.0 && (s[2] - h).abs() < 1e-15);
+}

@@ -160,7 +160,7 @@ proptest! {
                 {
                     let h = strand_ancf::dynamics::stable_step(&beam);
                     prop_assert!(h.as_ref().map_or(true, |h| h.is_finite() && *h > 0.0), "{h:?}");
-                    let slip = vec![0.0; beam.state_len()];
+                    let slip = beam.initial_state();
                     let mut trial = slip.clone();
                     let mut force = vec![0.0; beam.coords()];
                     if beam

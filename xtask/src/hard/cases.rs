@@ -9,7 +9,10 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 use strand_ancf::band::BandMatrix;
 use strand_ancf::beam::{Beam, BeamSpec, ElementKind, PointState};
-use strand_ancf::dynamics::{DynamicOptions, DynamicSummary, Scheme, run_dynamic, stable_step};
+use strand_ancf::dynamics::{
+    DynamicOptions, DynamicSummary, Scheme, run_dynamic_from, stable_step,
+};
+use strand_ancf::initial::InitialState;
 use strand_ancf::statics::{StaticOptions, solve_static};
 use strand_core::{LawKind, SectionLaw};
 use strand_scene::format::SceneFile;
@@ -36,6 +39,13 @@ struct History {
     fastest: Option<(probe::Start, f64)>,
     /// (t, total energy (J)) at every frame.
     totals: Vec<(f64, f64)>,
+    /// Largest angle between the strand's end tangents (rad) and when (s): past pi / 2 the
+    /// strand is folded back on itself.
+    fold: (f64, f64),
+    /// Largest angle between the tip's tangent and its initial direction (rad).
+    tip_turn: f64,
+    /// Tip positions at every frame (m).
+    tips: Vec<[f64; 3]>,
 }
 
 impl History {
@@ -46,11 +56,34 @@ impl History {
     }
 }
 
-/// Runs the dynamics of `beam` with `opts`, showing progress as `what`.
+/// Runs the dynamics of `beam` with `opts` from rest, showing progress as `what`.
 fn dynamic(
     ctx: &Ctx,
     beam: &Beam,
     opts: &DynamicOptions,
+    what: &str,
+) -> anyhow::Result<(DynamicSummary, History)> {
+    dynamic_from(ctx, beam, opts, &InitialState::rest(beam), what)
+}
+
+/// Unit tangent of `beam` at `x` for coordinates `q`.
+fn tangent(beam: &Beam, q: &[f64], x: f64) -> [f64; 3] {
+    let d = beam.sample(q, x).1;
+    let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    d.map(|v| v / n)
+}
+
+fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let c: f64 = a.iter().zip(b).map(|(x, y)| x * y).sum();
+    c.clamp(-1.0, 1.0).acos()
+}
+
+/// Runs the dynamics of `beam` with `opts` from `init`, showing progress as `what`.
+fn dynamic_from(
+    ctx: &Ctx,
+    beam: &Beam,
+    opts: &DynamicOptions,
+    init: &InitialState,
     what: &str,
 ) -> anyhow::Result<(DynamicSummary, History)> {
     let mut h = History {
@@ -60,7 +93,15 @@ fn dynamic(
     let nd = beam.node_coords();
     let k = beam.spec().elements * nd;
     let dim = nd / 2;
-    let s = run_dynamic(beam, opts, &mut |f| {
+    let l = beam.length();
+    let t0 = tangent(beam, &init.q, l);
+    let s = run_dynamic_from(beam, opts, init, &mut |f| {
+        let ends = angle(tangent(beam, f.q, 0.0), tangent(beam, f.q, l));
+        if ends > h.fold.0 {
+            h.fold = (ends, f.t);
+        }
+        h.tip_turn = h.tip_turn.max(angle(t0, tangent(beam, f.q, l)));
+        h.tips.push(tip(beam, f.q));
         h.totals.push((f.t, f.energies.total()));
         h.finite &= f.q.iter().chain(f.v).all(|x| x.is_finite())
             && f.points
@@ -577,7 +618,7 @@ struct Eval {
 }
 
 fn evaluate(beam: &Beam, q: &[f64]) -> anyhow::Result<Eval> {
-    let slip = vec![0.0; beam.state_len()];
+    let slip = beam.initial_state();
     let mut trial = slip.clone();
     let mut force = vec![0.0; beam.coords()];
     let mut points = vec![PointState::default(); beam.points()];
@@ -1107,7 +1148,7 @@ fn random_strands(good: &serde_json::Value, n: usize) -> (usize, usize, usize, u
             let setup = |e: &dyn std::fmt::Display| format!("setup:{e}");
             let beam = build_beam(&scene, BeamModelKind::Equivalent).map_err(|e| setup(&e))?;
             let h = stable_step(&beam).map_err(|e| setup(&e))?;
-            let slip = vec![0.0; beam.state_len()];
+            let slip = beam.initial_state();
             let mut trial = slip.clone();
             let mut force = vec![0.0; beam.coords()];
             beam.internal(beam.reference(), &slip, &mut trial, &mut force, None, None)
@@ -1123,4 +1164,143 @@ fn random_strands(good: &serde_json::Value, n: usize) -> (usize, usize, usize, u
         }
     }
     (n, accepted, bad, refused, setup)
+}
+
+// ---------------------------------------------------------------------------------------
+// Three-dimensional large motion
+
+/// The section-3 pendulum spun about the vertical (3 rad/s) and released, 5 s of
+/// generalized-alpha: the strand whips round in 3D, its tangent passing the opposite of its
+/// initial direction, where a section frame carried from the initial tangent is singular.
+pub fn spinning_whip(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
+    let scene = ctx.scene("spinning-whip")?;
+    let beam = build_beam(&scene, BeamModelKind::Equivalent)?;
+    let opts = dynamic_options(&scene).context("a dynamic scene")?;
+    let init = InitialState::rigid(&beam, scene.velocity, scene.angular_velocity)?;
+    let (s, h) = dynamic_from(ctx, &beam, &opts, &init, "generalized-alpha")?;
+    let mut rows = dynamic_rows(ctx, &s, &h)?;
+    let off_plane = h.tips.iter().map(|p| p[2].abs()).fold(0.0, f64::max);
+    rows.push(
+        ctx.check("tip-turn-deg", h.tip_turn.to_degrees(), "deg")?
+            .with_note(format!(
+                "largest angle of the tip's tangent from its initial direction; the tip left \
+                 the plane of release by up to {off_plane:.3} m; {} steps, {} Newton iterations",
+                s.steps, s.newton_iterations
+            )),
+    );
+    rows.push(ctx.report("dissipated", s.last.dissipated, "J"));
+    Ok(rows)
+}
+
+/// A strand pinned at both ends whose end support is driven back past the start (to 0.2 L
+/// from it, off the plane), under gravity across: the strand folds back on itself, its end
+/// tangents nearly opposite.
+pub fn folded_strand(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
+    let scene = ctx.scene("folded-strand")?;
+    let beam = build_beam(&scene, BeamModelKind::Equivalent)?;
+    let opts = dynamic_options(&scene).context("a dynamic scene")?;
+    let (s, h) = dynamic(ctx, &beam, &opts, "generalized-alpha")?;
+    let mut rows = vec![ctx.check("finite", f64::from(u8::from(h.finite)), "")?];
+    rows.push(
+        ctx.check("fold-deg", h.fold.0.to_degrees(), "deg")?
+            .with_note(format!(
+                "largest angle between the tangents at the two ends, at t = {:.2} s; {} steps, \
+                 {} Newton iterations",
+                h.fold.1, s.steps, s.newton_iterations
+            )),
+    );
+    rows.push(
+        ctx.report(
+            "energy-balance-relative",
+            s.balance_error / s.max_kinetic.max(f64::MIN_POSITIVE),
+            "",
+        )
+        .with_note(format!(
+            "spectral radius {}: numerical damping takes energy the ledger does not book; \
+             support work {:.3e} J, dissipated {:.3e} J",
+            scene_rho(&scene),
+            s.last.supports,
+            s.last.dissipated
+        )),
+    );
+    Ok(rows)
+}
+
+fn scene_rho(scene: &Scene) -> f64 {
+    match scene.analysis {
+        strand_scene::Analysis::Dynamic(d) => d.spectral_radius,
+        _ => f64::NAN,
+    }
+}
+
+/// The section-3 pendulum released under gravity (0, -9.8, -4) in the tilted plane that holds
+/// its direction and gravity, with the phase reference the plane's normal, 5 s of
+/// generalized-alpha at 1 ms: the spatial beam against the planar beam's run in the XY plane
+/// turned into the tilted plane. The planar run at half the step gives the integrator's own
+/// error, the scale the two element kinds' difference is judged against.
+pub fn tilted_pendulum(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
+    let scene = ctx.scene("tilted-pendulum")?;
+    let beam = build_beam(&scene, BeamModelKind::Equivalent)?;
+    if beam.spec().element != ElementKind::Spatial {
+        bail!("tilted-pendulum must run on the spatial element");
+    }
+    let opts = dynamic_options(&scene).context("a dynamic scene")?;
+    let (s, h) = dynamic(ctx, &beam, &opts, "spatial")?;
+    let mut rows = dynamic_rows(ctx, &s, &h)?;
+    // The same pendulum in the XY plane: gravity turned onto -Y, phases from +Z.
+    let g = scene.gravity;
+    let gn = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
+    let mut file = scene.file.clone();
+    file.name = "tilted-pendulum-planar".into();
+    if let Some(l) = file.loads.as_mut() {
+        l.gravity = Some([0.0, -gn, 0.0]);
+    }
+    if let Some(i) = file.initial.as_mut() {
+        i.phase_reference = None;
+    }
+    let planar = Scene::from_file(file)?;
+    if !planar.is_planar() {
+        bail!("the planar copy of tilted-pendulum is not planar");
+    }
+    let pb = build_beam(&planar, BeamModelKind::Equivalent)?;
+    let (_, hp) = dynamic(ctx, &pb, &opts, "planar")?;
+    let mut fine = opts;
+    let Scheme::GeneralizedAlpha {
+        step,
+        spectral_radius,
+    } = opts.scheme
+    else {
+        bail!("tilted-pendulum must use generalized-alpha");
+    };
+    fine.scheme = Scheme::GeneralizedAlpha {
+        step: 0.5 * step,
+        spectral_radius,
+    };
+    let (_, hf) = dynamic(ctx, &pb, &fine, "planar at h/2")?;
+    // The planar run's (x, y) turned into the tilted plane: X stays, -Y goes to gravity.
+    let down = [g[0] / gn, g[1] / gn, g[2] / gn];
+    let turn = |p: [f64; 3]| {
+        let d = -p[1];
+        [p[0] + d * down[0], d * down[1], d * down[2]]
+    };
+    let largest = |a: &[[f64; 3]], b: &[[f64; 3]], f: &dyn Fn([f64; 3]) -> [f64; 3]| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| distance(f(*x), *y))
+            .fold(0.0, f64::max)
+    };
+    let apart = largest(&hp.tips, &h.tips, &turn);
+    let integrator = largest(&hp.tips, &hf.tips, &|p| p);
+    let passed = h.tips.iter().any(|p| p[0] < -0.5);
+    rows.push(
+        ctx.check("tip-from-planar-over-integrator", apart / integrator, "")?
+            .with_note(format!(
+                "largest tip distance over 5 s from the planar run turned into the plane \
+                 {apart:.3e} m; the planar run at h and h/2 differ by {integrator:.3e} m; the \
+                 tip {} behind the pin",
+                if passed { "swung" } else { "never swung" }
+            )),
+    );
+    rows.push(ctx.check("tip-turn-deg", h.tip_turn.to_degrees(), "deg")?);
+    Ok(rows)
 }

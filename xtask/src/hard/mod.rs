@@ -62,6 +62,9 @@ pub const CASES: &[(&str, CaseFn)] = &[
     ("paper-law-statics", cases::paper_law_statics),
     ("non-finite-stop", cases::non_finite_stop),
     ("bad-input", cases::bad_input),
+    ("spinning-whip", cases::spinning_whip),
+    ("folded-strand", cases::folded_strand),
+    ("tilted-pendulum", cases::tilted_pendulum),
 ];
 
 fn names() -> Vec<&'static str> {

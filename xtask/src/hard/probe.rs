@@ -121,7 +121,7 @@ pub fn verlet_stable(beam: &Beam, h: f64, steps: usize, start: &Start, scale: f6
         return false;
     }
     let mut q = start.q.clone();
-    let mut slip = vec![0.0; beam.state_len()];
+    let mut slip = beam.initial_state();
     let mut trial = slip.clone();
     let mut force = vec![0.0; beam.coords()];
     let mut v = vec![0.0; nf];

@@ -17,12 +17,13 @@ pub(crate) fn gravity(scene: &Scene) -> f64 {
 }
 
 /// Distance between `a`'s points and `b` at equal material coordinate: (s, distance in m).
-pub(crate) fn profile(a: &Centerline, b: impl Fn(f64) -> (f64, f64)) -> Vec<(f64, f64)> {
+pub(crate) fn profile(a: &Centerline, b: impl Fn(f64) -> [f64; 3]) -> Vec<(f64, f64)> {
     a.s.iter()
         .enumerate()
         .map(|(i, &s)| {
-            let (x, y) = b(s);
-            (s, (a.x[i] - x).hypot(a.y[i] - y))
+            let p = b(s);
+            let d = (a.x[i] - p[0]).hypot(a.y[i] - p[1]).hypot(a.z[i] - p[2]);
+            (s, d)
         })
         .collect()
 }
@@ -97,9 +98,7 @@ pub fn fig7(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Findin
                     Mark::Dashed,
                     i,
                 ));
-                let p = profile(&eq, |s| {
-                    (fine.interpolate(&fine.x, s), fine.interpolate(&fine.y, s))
-                });
+                let p = profile(&eq, |s| fine.position(s));
                 let (d, at) = largest(&p);
                 worst = worst.max(d);
                 ours.push(format!("g = {g}: {} m at s = {at:.3} m", sci(d)));
@@ -139,7 +138,7 @@ pub fn fig7(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Findin
             ));
             let p = profile(&eq, |s| {
                 let p = r.position(s);
-                (p[0], p[1])
+                [p[0], p[1], 0.0]
             });
             let (d, at) = largest(&p);
             independent.push(format!("g = {g}: {} m at s = {at:.3} m", sci(d)));

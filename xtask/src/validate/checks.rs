@@ -58,13 +58,14 @@ pub fn distance(c: &Centerline, tip: [f64; 3], r: &Solution) -> Distance {
     let mut sum = 0.0;
     for i in 0..c.s.len() {
         let p = r.position(c.s[i]);
-        let d = (c.x[i] - p[0]).hypot(c.y[i] - p[1]);
+        // The elastica is planar: a point off the XY plane is off by its z too.
+        let d = (c.x[i] - p[0]).hypot(c.y[i] - p[1]).hypot(c.z[i]);
         if d > max {
             (max, at) = (d, c.s[i]);
         }
         sum += d * d;
     }
-    let tip = (tip[0] - r.tip[0]).hypot(tip[1] - r.tip[1]);
+    let tip = (tip[0] - r.tip[0]).hypot(tip[1] - r.tip[1]).hypot(tip[2]);
     if tip > max {
         (max, at) = (tip, r.problem.length);
     }
@@ -283,6 +284,7 @@ mod tests {
         let c = Centerline {
             x: p.iter().map(|q| q[0]).collect(),
             y: p.iter().map(|q| q[1] + 1e-3).collect(),
+            z: vec![0.0; s.len()],
             tension: vec![0.0; s.len()],
             s,
         };

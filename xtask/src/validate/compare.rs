@@ -1,6 +1,7 @@
-//! One model's run against another's on the same scene (SPEC 7): centreline distance at equal
-//! material coordinate (max and RMS over s), tip distance, and in dynamics the tip distance
-//! over the output times and the energy differences per component.
+//! One model's run against another's on the same scene (SPEC 7): centreline distance in 3D at
+//! equal material coordinate (max and RMS over s), tip distance, and in dynamics the tip
+//! distance over the output times and the energy differences per component (with the work of
+//! moving supports where a run books it).
 
 use std::path::Path;
 
@@ -22,8 +23,9 @@ pub struct Comparison {
     /// Dynamics: largest and RMS tip distance over the common output times (m).
     pub tip_over_time: Option<(f64, f64)>,
     /// Dynamics: largest difference over the output times of kinetic, gravity, elastic,
-    /// dissipated and their sum (J), and the larger run's largest kinetic energy (J).
-    pub energy: Option<([f64; 5], f64)>,
+    /// dissipated, support work and the total (the sum of the first four minus the support
+    /// work) (J), and the larger run's largest kinetic energy (J).
+    pub energy: Option<([f64; 6], f64)>,
 }
 
 /// Compares the model folders `a` and `b` (each with `centerline.csv`, and for dynamics
@@ -41,11 +43,7 @@ pub fn compare(a: &Path, b: &Path, dynamic: bool) -> anyhow::Result<Comparison> 
         if ca.s[i] < lo - slack || ca.s[i] > hi + slack {
             continue;
         }
-        let (x, y) = (
-            cb.interpolate(&cb.x, ca.s[i]),
-            cb.interpolate(&cb.y, ca.s[i]),
-        );
-        let d = (ca.x[i] - x).hypot(ca.y[i] - y);
+        let d = dist(ca.point(i), cb.position(ca.s[i]));
         max = max.max(d);
         sum += d * d;
         count += 1;
@@ -54,7 +52,7 @@ pub fn compare(a: &Path, b: &Path, dynamic: bool) -> anyhow::Result<Comparison> 
         bail!("the runs' centrelines share no material coordinates");
     }
     let (ta, tb) = (summary_tip(a)?, summary_tip(b)?);
-    let tip = (ta[0] - tb[0]).hypot(ta[1] - tb[1]);
+    let tip = dist(ta, tb);
     let mut c = Comparison {
         max: max.max(tip),
         rms: (sum / count as f64).sqrt(),
@@ -69,15 +67,18 @@ pub fn compare(a: &Path, b: &Path, dynamic: bool) -> anyhow::Result<Comparison> 
         if pairs.is_empty() {
             bail!("energy.csv: no common output times");
         }
-        let mut diff = [0.0f64; 5];
+        let mut diff = [0.0f64; 6];
         for (i, j) in pairs {
-            let sa = ea.kinetic[i] + ea.gravity[i] + ea.elastic[i] + ea.dissipated[i];
-            let sb = eb.kinetic[j] + eb.gravity[j] + eb.elastic[j] + eb.dissipated[j];
+            let sa =
+                ea.kinetic[i] + ea.gravity[i] + ea.elastic[i] + ea.dissipated[i] - ea.supports[i];
+            let sb =
+                eb.kinetic[j] + eb.gravity[j] + eb.elastic[j] + eb.dissipated[j] - eb.supports[j];
             let d = [
                 ea.kinetic[i] - eb.kinetic[j],
                 ea.gravity[i] - eb.gravity[j],
                 ea.elastic[i] - eb.elastic[j],
                 ea.dissipated[i] - eb.dissipated[j],
+                ea.supports[i] - eb.supports[j],
                 sa - sb,
             ];
             for (m, v) in diff.iter_mut().zip(d) {
@@ -93,6 +94,11 @@ pub fn compare(a: &Path, b: &Path, dynamic: bool) -> anyhow::Result<Comparison> 
         c.energy = Some((diff, kmax));
     }
     Ok(c)
+}
+
+/// Distance between two points (m).
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 /// The tip position at the end from a model folder's `summary.json` (m).
@@ -126,9 +132,14 @@ fn common_times(a: &[f64], b: &[f64]) -> Vec<(usize, usize)> {
 }
 
 fn tip_over_time(a: &Path, b: &Path) -> anyhow::Result<(f64, f64)> {
-    let load = |d: &Path| -> anyhow::Result<[Vec<f64>; 3]> {
+    let load = |d: &Path| -> anyhow::Result<[Vec<f64>; 4]> {
         let t = Table::load(&d.join("tip.csv"))?;
-        Ok([t.column("t")?, t.column("x")?, t.column("y")?])
+        Ok([
+            t.column("t")?,
+            t.column("x")?,
+            t.column("y")?,
+            t.column("z")?,
+        ])
     };
     let (ta, tb) = (load(a)?, load(b)?);
     let pairs = common_times(&ta[0], &tb[0]);
@@ -138,7 +149,10 @@ fn tip_over_time(a: &Path, b: &Path) -> anyhow::Result<(f64, f64)> {
     let mut max: f64 = 0.0;
     let mut sum = 0.0;
     for &(i, j) in &pairs {
-        let d = (ta[1][i] - tb[1][j]).hypot(ta[2][i] - tb[2][j]);
+        let d = dist(
+            [ta[1][i], ta[2][i], ta[3][i]],
+            [tb[1][j], tb[2][j], tb[3][j]],
+        );
         max = max.max(d);
         sum += d * d;
     }
@@ -193,8 +207,19 @@ pub fn rows(
             ));
             return rows;
         };
-        let names = ["kinetic", "gravity", "elastic", "dissipated", "total"];
+        let names = [
+            "kinetic",
+            "gravity",
+            "elastic",
+            "dissipated",
+            "support work",
+            "total",
+        ];
+        let moving = diff[4] != 0.0;
         for (name, d) in names.iter().zip(diff) {
+            if *name == "support work" && !moving {
+                continue;
+            }
             rows.push(
                 Row::measured(
                     scene,
@@ -253,7 +278,8 @@ mod tests {
         let (tmax, _) = c.tip_over_time.unwrap();
         assert!((tmax - 4e-3).abs() < 1e-12);
         let (diff, kmax) = c.energy.unwrap();
-        assert!((diff[0] - 0.04).abs() < 1e-12 && (diff[4] - 0.04).abs() < 1e-12);
+        assert!((diff[0] - 0.04).abs() < 1e-12 && (diff[5] - 0.04).abs() < 1e-12);
+        assert_eq!(diff[4], 0.0);
         assert!((kmax - 1.04).abs() < 1e-12);
         let tol = DistanceTol {
             max: 2e-3,

@@ -20,10 +20,10 @@ const SAMPLES: [f64; 4] = [0.25, 0.5, 0.75, 1.0];
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ModelSnapshot {
-    /// Tip position at the end (m).
-    pub tip: [f64; 2],
-    /// Centreline points (s, x, y) at the end (m).
-    pub centerline: Vec<[f64; 3]>,
+    /// Tip position at the end (m): (x, y), and z for a run that leaves the XY plane.
+    pub tip: Vec<f64>,
+    /// Centreline points (s, x, y), and z for a run that leaves the XY plane, at the end (m).
+    pub centerline: Vec<Vec<f64>>,
     /// Dynamics: kinetic, gravity, elastic and dissipated energy at the end (J).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub energy_end: Option<[f64; 4]>,
@@ -34,11 +34,16 @@ impl ModelSnapshot {
     /// `length`, with the tip from its summary.
     pub fn take(dir: &Path, tip: [f64; 3], length: f64, dynamic: bool) -> anyhow::Result<Self> {
         let c = Centerline::load(dir)?;
+        // A planar run keeps the stored form (x, y); z is stored where the run has one.
+        let spatial = tip[2] != 0.0 || c.z.iter().any(|z| *z != 0.0);
+        let dims = if spatial { 3 } else { 2 };
         let centerline = SAMPLES
             .iter()
             .map(|f| {
                 let s = f * length;
-                [s, c.interpolate(&c.x, s), c.interpolate(&c.y, s)]
+                let mut row = vec![s];
+                row.extend_from_slice(&c.position(s)[..dims]);
+                row
             })
             .collect();
         let energy_end = if dynamic {
@@ -47,7 +52,7 @@ impl ModelSnapshot {
             None
         };
         Ok(ModelSnapshot {
-            tip: [tip[0], tip[1]],
+            tip: tip[..dims].to_vec(),
             centerline,
             energy_end,
         })
@@ -76,6 +81,18 @@ pub struct GoldenTolerance {
     pub position: f64,
     /// Energy (J).
     pub energy: f64,
+}
+
+/// Distance between two stored points of 2 or 3 coordinates (a missing z is zero) (m).
+fn distance(a: &[f64], b: &[f64]) -> f64 {
+    let at = |p: &[f64], k: usize| p.get(k).copied().unwrap_or(0.0);
+    if a.len() < 2 || b.len() < 2 || a.len() > 3 || b.len() > 3 {
+        return f64::INFINITY;
+    }
+    (0..3)
+        .map(|k| (at(a, k) - at(b, k)).powi(2))
+        .sum::<f64>()
+        .sqrt()
 }
 
 /// Path of the golden file of `scene` in `dir`.
@@ -165,15 +182,15 @@ pub fn compare(
             ));
             continue;
         };
-        let mut dp = (g.tip[0] - c.tip[0]).hypot(g.tip[1] - c.tip[1]);
+        let mut dp = distance(&g.tip, &c.tip);
         if g.centerline.len() != c.centerline.len() {
             dp = f64::INFINITY;
         }
         for (a, b) in g.centerline.iter().zip(&c.centerline) {
-            let d = if (a[0] - b[0]).abs() > 1e-12 {
+            let d = if a.is_empty() || b.is_empty() || (a[0] - b[0]).abs() > 1e-12 {
                 f64::INFINITY
             } else {
-                (a[1] - b[1]).hypot(a[2] - b[2])
+                distance(&a[1..], &b[1..])
             };
             dp = dp.max(d);
         }
@@ -231,16 +248,58 @@ mod tests {
     use crate::validate::report::Status;
 
     fn snap(dx: f64) -> BTreeMap<String, ModelSnapshot> {
+        snap_z(dx, None)
+    }
+
+    /// A snapshot; with `z`, of a run off the XY plane.
+    fn snap_z(dx: f64, z: Option<f64>) -> BTreeMap<String, ModelSnapshot> {
         let mut m = BTreeMap::new();
+        let mut tip = vec![0.1 + dx, -0.3];
+        let mut point = vec![0.1, 0.09, -0.02];
+        if let Some(z) = z {
+            tip.push(z);
+            point.push(0.5 * z);
+        }
         m.insert(
             "equivalent".to_string(),
             ModelSnapshot {
-                tip: [0.1 + dx, -0.3],
-                centerline: vec![[0.1, 0.09, -0.02]],
+                tip,
+                centerline: vec![point],
                 energy_end: Some([1.0, -2.0, 0.5, 0.1]),
             },
         );
         m
+    }
+
+    /// A stored z counts: a run that moves off the plane by 1e-3 m fails, and a stored planar
+    /// snapshot compares with a planar run (missing z is zero).
+    #[test]
+    fn distances_include_z() {
+        let dir = std::env::temp_dir().join(format!("xtask-golden-z-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let tol = GoldenTol {
+            position: 1e-6,
+            energy: 1e-6,
+            why: "test".into(),
+            quick: None,
+        };
+        let prov = Provenance {
+            command: "test".into(),
+            commit: "abc".into(),
+            date: "today".into(),
+            profile: "debug".into(),
+            machine: Machine::detect(),
+        };
+        bless(&dir, "s", &prov, &tol, snap_z(0.0, Some(0.2))).unwrap();
+        let rows = compare(&dir, "s", &tol, &snap_z(0.0, Some(0.2)));
+        assert!(rows.iter().all(|r| r.status == Status::Pass), "{rows:?}");
+        let rows = compare(&dir, "s", &tol, &snap_z(0.0, Some(0.201)));
+        assert_eq!(rows[0].status, Status::Fail);
+        assert!((rows[0].value.unwrap() - 1e-3).abs() < 1e-12, "{rows:?}");
+        bless(&dir, "s", &prov, &tol, snap(0.0)).unwrap();
+        let rows = compare(&dir, "s", &tol, &snap_z(0.0, Some(0.0)));
+        assert!(rows.iter().all(|r| r.status == Status::Pass), "{rows:?}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

@@ -78,6 +78,8 @@ pub struct Centerline {
     pub x: Vec<f64>,
     /// Position y (m).
     pub y: Vec<f64>,
+    /// Position z (m).
+    pub z: Vec<f64>,
     /// Axial tension (N).
     pub tension: Vec<f64>,
 }
@@ -90,6 +92,7 @@ impl Centerline {
             s: t.column("s")?,
             x: t.column("x")?,
             y: t.column("y")?,
+            z: t.column("z")?,
             tension: t.column("tension")?,
         };
         if c.s.len() < 2 || c.s.windows(2).any(|w| w[1] <= w[0]) {
@@ -99,6 +102,20 @@ impl Centerline {
             );
         }
         Ok(c)
+    }
+
+    /// The position at material coordinate `s` (m), interpolated linearly.
+    pub fn position(&self, s: f64) -> [f64; 3] {
+        [
+            self.interpolate(&self.x, s),
+            self.interpolate(&self.y, s),
+            self.interpolate(&self.z, s),
+        ]
+    }
+
+    /// The position of row `i` (m).
+    pub fn point(&self, i: usize) -> [f64; 3] {
+        [self.x[i], self.y[i], self.z[i]]
     }
 
     /// Linear interpolation of `values` at material coordinate `s`, clamped to the sampled
@@ -130,8 +147,10 @@ pub struct Energy {
     pub elastic: Vec<f64>,
     /// Dissipated work (J).
     pub dissipated: Vec<f64>,
-    /// Sum of the four minus its initial value (J).
+    /// Sum of the four minus the work of moving supports (J).
     pub total: Vec<f64>,
+    /// Work of moving supports on the strand (J; zero where the file has no `support_work`).
+    pub supports: Vec<f64>,
 }
 
 impl Energy {
@@ -145,6 +164,9 @@ impl Energy {
             elastic: t.column("elastic")?,
             dissipated: t.column("dissipated")?,
             total: t.column("total")?,
+            supports: t
+                .column("support_work")
+                .unwrap_or_else(|_| vec![0.0; t.rows.len()]),
         };
         if e.t.is_empty() {
             bail!("{}: no rows", dir.join("energy.csv").display());
@@ -183,16 +205,18 @@ mod tests {
 
     #[test]
     fn reads_and_interpolates() {
-        let t = Table::parse("s,x,y,tension\n0,0,0,2\n1,1,-1,0\n").unwrap();
+        let t = Table::parse("s,x,y,z,tension\n0,0,0,0,2\n1,1,-1,3,0\n").unwrap();
         assert_eq!(t.column("y").unwrap(), [0.0, -1.0]);
         assert!(t.column("z").is_err());
         let c = Centerline {
             s: t.column("s").unwrap(),
             x: t.column("x").unwrap(),
             y: t.column("y").unwrap(),
+            z: t.column("z").unwrap(),
             tension: t.column("tension").unwrap(),
         };
         assert_eq!(c.interpolate(&c.tension, 0.25), 1.5);
+        assert_eq!(c.position(0.5), [0.5, -0.5, 1.5]);
         assert_eq!(c.interpolate(&c.tension, 2.0), 0.0);
         assert!(Table::parse("a,b\n1\n").is_err());
     }
@@ -206,6 +230,7 @@ mod tests {
             elastic: vec![0.0; 3],
             dissipated: vec![0.0; 3],
             total: vec![0.0, 0.1, -0.2],
+            supports: vec![0.0; 3],
         };
         assert!((e.balance_relative() - 0.1).abs() < 1e-15);
     }

@@ -12,8 +12,10 @@ use crate::spatial::SpatialMatrix;
 impl Beam {
     /// Evaluates the generalized elastic forces `Q_e` (eq. (28)) into `force` (all
     /// coordinates, overwritten) and, if given, the tangent `dQ_e/dq` of the free coordinates
-    /// into `tangent` (overwritten). `slip`/`trial` are the law's committed and trial state
-    /// ([`Self::state_len`]); `points`, if given, receives the state at every bending point.
+    /// into `tangent` (overwritten). `slip`/`trial` are the committed and trial per-point state
+    /// ([`Self::state_len`] values, see [`Self::initial_state`]; shorter slices stand for no
+    /// slip with the planar element, whose state holds no section frames); `points`, if given,
+    /// receives the state at every bending point.
     ///
     /// The tangent differentiates the forces with the neighbouring elements' mean strains, in
     /// the strain the section law reads (module `strain_recovery`), held fixed: that coupling
@@ -44,6 +46,17 @@ impl Beam {
         mut tangent: Option<&mut BandMatrix>,
         mut points: Option<&mut [PointState]>,
     ) -> Result<Evaluation, BeamError> {
+        if self.frame_state_per_point() > 0
+            && (slip.len() != self.state_len() || trial.len() != self.state_len())
+        {
+            return Err(BeamError::Setup(format!(
+                "state vectors of {} and {} values for a beam whose state has {} (section \
+                 frames of the spatial element included)",
+                slip.len(),
+                trial.len(),
+                self.state_len()
+            )));
+        }
         force.fill(0.0);
         if let Some(t) = tangent.as_deref_mut() {
             t.fill_zero();
@@ -150,13 +163,14 @@ impl Beam {
         })
     }
 
-    /// Tangent of element `e` alone at coordinates `q`, from a state without slip (for the
-    /// stable-step bound).
+    /// Tangent of element `e` alone at coordinates `q`, from the initial state (no slip; for
+    /// the stable-step bound).
     #[cfg(test)]
     pub(crate) fn element_tangent(&self, e: usize, q: &[f64]) -> Result<DMatrix<f64>, BeamError> {
         let rule = &self.rules[e];
         let ws = self.state_per_point();
-        let slip = vec![0.0; rule.bend.len() * ws];
+        let p0: usize = self.rules[..e].iter().map(|r| r.bend.len()).sum();
+        let slip = self.initial_state()[p0 * ws..(p0 + rule.bend.len()) * ws].to_vec();
         let mut trial = slip.clone();
         let means = self.other_means(q, e)?;
         let m = &means;

@@ -1,4 +1,5 @@
-//! The constant consistent mass matrix (eq. (44)) of the free coordinates.
+//! The constant consistent mass matrix (eq. (44)) of the free coordinates, and its entries
+//! that couple any coordinate to one a moving support holds.
 
 use nalgebra::DMatrix;
 
@@ -30,6 +31,34 @@ pub(super) fn free_mass(
         }
     }
     mass
+}
+
+/// Mass entries `(row, k, m)` of the columns that moving supports hold: `row` a global
+/// coordinate, `k` the index into `moving` (see `supports::moving_coordinates`).
+pub(super) fn held_mass(
+    spec: &BeamSpec,
+    nd: usize,
+    l: f64,
+    moving: &[(usize, usize, usize)],
+) -> Vec<(usize, usize, f64)> {
+    let mut out = Vec::new();
+    if moving.is_empty() {
+        return out;
+    }
+    let me = element_mass(spec.element, spec.mass_per_length, l);
+    for e in 0..spec.elements {
+        for b in 0..2 * nd {
+            let Some(k) = moving.iter().position(|m| m.0 == e * nd + b) else {
+                continue;
+            };
+            for a in 0..2 * nd {
+                if me[(a, b)] != 0.0 {
+                    out.push((e * nd + a, k, me[(a, b)]));
+                }
+            }
+        }
+    }
+    out
 }
 
 /// Consistent mass matrix of one element of `kind` (eq. (44)).

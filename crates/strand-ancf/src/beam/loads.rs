@@ -1,13 +1,26 @@
-//! External loads: the generalized force of gravity (eq. (45)).
+//! External loads: the generalized force of gravity (eq. (45)) and of constant point forces,
+//! the beam's dead load (scaled by the load factor in statics).
 
 use nalgebra::{Vector2, Vector3};
 
-use super::{BeamSpec, ElementKind};
+use super::{BeamError, BeamSpec, ElementKind};
 use crate::load::{planar_gravity, spatial_gravity};
+use crate::shape::shape;
 
-/// Generalized gravity force on all coordinates (N), `nd` coordinates per node, elements of
-/// length `l`.
-pub(super) fn gravity_force(spec: &BeamSpec, nd: usize, l: f64) -> Vec<f64> {
+/// A constant point force on the strand.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointLoad {
+    /// Material coordinate from the start (m), in [0, L].
+    pub s: f64,
+    /// Force (N); in the XY plane for planar elements.
+    pub force: [f64; 3],
+}
+
+/// Generalized force of gravity and the point loads on all coordinates (N), `nd` coordinates
+/// per node, elements of length `l`. A point force `F` at `s` adds `S(s)^T F` to the element
+/// holding `s` (virtual work `F . delta r(s)`); its potential `-F . r(s)` is linear in the
+/// coordinates like that of gravity.
+pub(super) fn dead_load(spec: &BeamSpec, nd: usize, l: f64) -> Result<Vec<f64>, BeamError> {
     let fe: Vec<f64> = match spec.element {
         ElementKind::Planar => {
             let g = Vector2::new(spec.gravity[0], spec.gravity[1]);
@@ -22,11 +35,39 @@ pub(super) fn gravity_force(spec: &BeamSpec, nd: usize, l: f64) -> Vec<f64> {
                 .to_vec()
         }
     };
-    let mut gravity_force = vec![0.0; (spec.elements + 1) * nd];
-    for e in 0..spec.elements {
+    let n = spec.elements;
+    let mut load = vec![0.0; (n + 1) * nd];
+    for e in 0..n {
         for a in 0..2 * nd {
-            gravity_force[e * nd + a] += fe[a];
+            load[e * nd + a] += fe[a];
         }
     }
-    gravity_force
+    let dim = nd / 2;
+    let length = l * n as f64;
+    for (k, p) in spec.point_loads.iter().enumerate() {
+        if !(p.s.is_finite() && (0.0..=length).contains(&p.s)) {
+            return Err(BeamError::Setup(format!(
+                "point load {k}: s = {} m is outside the strand [0, {length}] m",
+                p.s
+            )));
+        }
+        if !p.force.iter().all(|f| f.is_finite()) {
+            return Err(BeamError::Setup(format!(
+                "point load {k}: non-finite force"
+            )));
+        }
+        if dim == 2 && p.force[2] != 0.0 {
+            return Err(BeamError::Setup(format!(
+                "point load {k}: a planar beam takes forces in the XY plane"
+            )));
+        }
+        let e = ((p.s / l) as usize).min(n - 1);
+        let row = shape(p.s - e as f64 * l, l);
+        for (i, h) in row.iter().enumerate() {
+            for c in 0..dim {
+                load[e * nd + i * dim + c] += h * p.force[c];
+            }
+        }
+    }
+    Ok(load)
 }

@@ -5,9 +5,12 @@
 //!
 //! Modules, one job each:
 //! * `quadrature`: the axial, hourglass and bending integration points of an element;
-//! * `supports`: which coordinates the supports hold, and the free coordinates' numbering;
-//! * `inertia`: the constant mass matrix of the free coordinates (eq. (44));
-//! * `loads`: the generalized gravity force (eq. (45));
+//! * `supports`: which coordinates the supports hold, the free coordinates' numbering, and
+//!   the prescribed motion of a supported end;
+//! * `inertia`: the constant mass matrix (eq. (44)) of the free coordinates and its coupling
+//!   to the coordinates a moving support holds;
+//! * `loads`: the generalized force of gravity (eq. (45)) and of point forces;
+//! * `state`: the per-point state solvers commit (slip state, section frames);
 //! * `assembly`: the global elastic force and tangent from the element contributions;
 //! * `strain_recovery`: the strain the section law reads, from the element means;
 //! * `planar_element`, `spatial_element`: one element's forces and tangent;
@@ -37,6 +40,7 @@ mod quadrature;
 mod sampling;
 mod spatial_element;
 mod strain_recovery;
+mod state;
 mod supports;
 
 use nalgebra::{DMatrix, Vector3};
@@ -46,9 +50,11 @@ use crate::band::BandMatrix;
 use crate::error::AncfError;
 use crate::mass::VectorMass;
 use crate::planar::PlanarCoords;
-use crate::spatial::{SectionFrame, SpatialCoords};
+use crate::spatial::{SectionFrame, SpatialCoords, default_phase_reference};
 
+pub use loads::PointLoad;
 pub(crate) use quadrature::{BendPoint, ElementRule};
+pub use supports::SupportMotion;
 
 /// Which cable element a beam uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -88,6 +94,37 @@ pub struct BeamSpec {
     pub start: Option<Support>,
     /// Support at x = L.
     pub end: Option<Support>,
+    /// Direction of phase zero at x = 0 (projected off `direction`); `None` for
+    /// [`default_phase_reference`](crate::spatial::default_phase_reference). A planar beam
+    /// measures phases from Z.
+    pub phase_reference: Option<[f64; 3]>,
+    /// Constant point forces.
+    pub point_loads: Vec<PointLoad>,
+    /// Prescribed displacement of the support at x = 0 (which must exist).
+    pub start_motion: Option<SupportMotion>,
+    /// Prescribed displacement of the support at x = L (which must exist).
+    pub end_motion: Option<SupportMotion>,
+}
+
+impl Default for BeamSpec {
+    /// One planar element of 1 kg/m along +X, no bending-point override, no loads, no
+    /// supports: fill in what a beam needs with `..BeamSpec::default()`.
+    fn default() -> Self {
+        BeamSpec {
+            elements: 1,
+            bending_points: None,
+            mass_per_length: 1.0,
+            element: ElementKind::Planar,
+            direction: [1.0, 0.0, 0.0],
+            gravity: [0.0; 3],
+            start: None,
+            end: None,
+            phase_reference: None,
+            point_loads: Vec::new(),
+            start_motion: None,
+            end_motion: None,
+        }
+    }
 }
 
 /// Errors of building or evaluating a beam.
@@ -133,6 +170,9 @@ pub struct PointState {
     pub moment: f64,
     /// d(stored energy)/d eps at fixed curvature (J/m), see `SectionResponse::energy_strain`.
     pub energy_strain: f64,
+    /// The wires' moment normal to the bending direction `(y, z)` (N m), see
+    /// `SectionResponse::energy_turn`; zero for the planar element.
+    pub energy_turn: [f64; 2],
     /// Quadrature weight (m).
     pub weight: f64,
     /// Number of slipping wires.
@@ -165,13 +205,22 @@ pub struct Beam {
     free_span: Option<std::ops::Range<usize>>,
     rules: Vec<ElementRule>,
     q_ref: Vec<f64>,
+    /// Gravity and point forces (see [`Beam::gravity_force`]).
     gravity_force: Vec<f64>,
     mass: BandMatrix,
+    /// Moving supports: the global position coordinates they hold, with the motion and the
+    /// component each follows.
+    moving: Vec<(usize, usize, usize)>,
+    /// The motions of the start and end supports.
+    motions: [Option<SupportMotion>; 2],
+    /// Mass entries `(row, column, m)` coupling any coordinate (row) to a coordinate a moving
+    /// support holds (column).
+    held_mass: Vec<(usize, usize, f64)>,
     vector_mass: VectorMass,
     wires: usize,
     /// Coordinates per node.
     nd: usize,
-    /// Section frame of the straight strand (spatial element).
+    /// Initial section frame of every bending point (spatial element).
     frame: Option<SectionFrame>,
 }
 
@@ -199,6 +248,8 @@ impl Beam {
         if (d.norm() - 1.0).abs() > 1e-12 {
             return Err(BeamError::Setup("direction must be a unit vector".into()));
         }
+        let setup = |source| BeamError::Kinematics { element: 0, source };
+        let reference = spec.phase_reference.map(Vector3::from);
         let (nd, frame) = match spec.element {
             ElementKind::Planar => {
                 if d.z != 0.0 || spec.gravity[2] != 0.0 {
@@ -206,15 +257,22 @@ impl Beam {
                         "a planar beam needs its direction and gravity in the XY plane".into(),
                     ));
                 }
+                if let Some(r) = reference {
+                    let f = SectionFrame::new(d, r).map_err(setup)?;
+                    if (f.e_z0() - Vector3::z()).norm() > 1e-12 {
+                        return Err(BeamError::Setup(
+                            "a planar beam measures the wire phases from Z: its phase \
+                             reference must project onto +Z"
+                                .into(),
+                        ));
+                    }
+                }
                 (4, None)
             }
-            ElementKind::Spatial => (
-                6,
-                Some(
-                    SectionFrame::along(d)
-                        .map_err(|source| BeamError::Kinematics { element: 0, source })?,
-                ),
-            ),
+            ElementKind::Spatial => {
+                let r = reference.unwrap_or_else(|| default_phase_reference(&d));
+                (6, Some(SectionFrame::new(d, r).map_err(setup)?))
+            }
         };
         let dim = nd / 2;
         let n_glob = (n + 1) * nd;
@@ -232,7 +290,10 @@ impl Beam {
             .map(|e| quadrature::element_rule(&law, &spec, e, l))
             .collect::<Result<Vec<_>, _>>()?;
         let mass = inertia::free_mass(&spec, nd, l, &free_index, n_free);
-        let gravity_force = loads::gravity_force(&spec, nd, l);
+        let gravity_force = loads::dead_load(&spec, nd, l)?;
+        let motions = [spec.start_motion.clone(), spec.end_motion.clone()];
+        let moving = supports::moving_coordinates(&spec, nd)?;
+        let held_mass = inertia::held_mass(&spec, nd, l, &moving);
         let vector_mass = VectorMass::from_band(&mass, dim);
         Ok(Beam {
             spec,
@@ -247,6 +308,9 @@ impl Beam {
             q_ref,
             gravity_force,
             mass,
+            moving,
+            motions,
+            held_mass,
             wires,
             nd,
             frame,
@@ -290,7 +354,8 @@ impl Beam {
     pub fn reference(&self) -> &[f64] {
         &self.q_ref
     }
-    /// Generalized gravity force, all coordinates (N).
+    /// Generalized dead load, all coordinates (N): gravity and the point forces, whose
+    /// potential `-Q . (q - q_0)` the energy ledger books as gravity.
     pub fn gravity_force(&self) -> &[f64] {
         &self.gravity_force
     }
@@ -326,19 +391,6 @@ impl Beam {
     pub fn points(&self) -> usize {
         self.rules.iter().map(|r| r.bend.len()).sum()
     }
-    /// Slip state values per bending point: one per wire for a law with state, else none.
-    pub(crate) fn state_per_point(&self) -> usize {
-        if self.law.kind().has_state() {
-            self.wires
-        } else {
-            0
-        }
-    }
-    /// Length of the law's state vector for the whole beam.
-    pub fn state_len(&self) -> usize {
-        self.points() * self.state_per_point()
-    }
-
     pub(crate) fn planar_coords(&self, q: &[f64], e: usize) -> PlanarCoords {
         PlanarCoords::from_column_slice(&q[e * 4..e * 4 + 8])
     }

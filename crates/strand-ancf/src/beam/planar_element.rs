@@ -274,6 +274,7 @@ fn book_planar_point(
             kappa_y: 0.0,
             moment: r.moment,
             energy_strain: r.energy_strain,
+            energy_turn: [0.0; 2],
             weight: w,
             slipping: r.slipping,
         };

@@ -1,15 +1,20 @@
 //! Forces and tangent of one spatial element (eq. (28)): as the planar element, with the
-//! curvature vector in the carried section frame and the vector form of the section law.
+//! curvature vector in each bending point's carried section frame and the vector form of the
+//! section law.
+
+use nalgebra::Matrix6;
 
 use super::{AXIAL_POINTS, Beam, BeamError, ElementRule, Evaluation, HOURGLASS, PointState};
 use crate::spatial::{
-    self, SpatialCoords, SpatialMatrix, SpatialPoint, SpatialSection, SpatialVector,
+    self, SectionFrame, SpatialCoords, SpatialMatrix, SpatialPoint, SpatialSection, SpatialVector,
 };
 
 impl Beam {
     /// Forces (and tangent) of one spatial element: as [`Beam::element_planar`] with the
-    /// curvature vector `(kappa_y, kappa_z)` in the carried section frame and the vector form
-    /// of the section law.
+    /// curvature vector `(kappa_y, kappa_z)` in the section frame of every bending point and
+    /// the vector form of the section law. `state` holds each bending point's committed slip
+    /// state and section frame (see `beam::state`); the frame carried to the current tangent
+    /// is written to `trial` with the law's trial state.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn element_spatial(
         &self,
@@ -17,13 +22,12 @@ impl Beam {
         rule: &ElementRule,
         qe: &SpatialCoords,
         means: &[f64; 2],
-        slip: &[f64],
+        state: &[f64],
         trial: &mut [f64],
         mut tangent: Option<&mut SpatialMatrix>,
         mut points: Option<&mut [PointState]>,
     ) -> Result<(SpatialVector, Evaluation, bool), BeamError> {
         let kin = |source| BeamError::Kinematics { element: e, source };
-        let frame = self.frame.as_ref().expect("spatial beams have a frame");
         let ea = self.law.axial_stiffness();
         let mut f = SpatialVector::zeros();
         if let Some(t) = tangent.as_deref_mut() {
@@ -35,26 +39,19 @@ impl Beam {
         let mut symmetric = true;
         let mut eps_a = [0.0; AXIAL_POINTS];
         let mut eps_q = [SpatialVector::zeros(); AXIAL_POINTS];
-        let mut eps_h = [nalgebra::Matrix6::<f64>::zeros(); AXIAL_POINTS];
+        let mut eps_h = [Matrix6::<f64>::zeros(); AXIAL_POINTS];
         for (j, ap) in rule.axial.iter().enumerate() {
-            let pt = SpatialPoint::at(qe, &ap.row);
-            let sec = |eps: f64| SpatialSection {
-                n: ea * eps,
-                dn_deps: ea,
-                ..Default::default()
-            };
+            let a = SpatialPoint::at(qe, &ap.row).axial().map_err(kin)?;
+            eps_a[j] = a.eps;
+            let g = a.gradient();
+            let n = ea * a.eps;
+            spatial::add_gradient(&mut f, ap.weight, &ap.row, &(g * n));
             if let Some(t) = tangent.as_deref_mut() {
-                let s2 = pt.second(frame).map_err(kin)?;
-                let s = sec(s2.first.eps);
-                eps_a[j] = s2.first.eps;
-                spatial::add_gradient(&mut f, ap.weight, &ap.row, &s2.force(&s));
-                spatial::add_hessian(t, ap.weight, &ap.row, &s2.tangent(&s));
-                eps_q[j] = spatial::scatter_gradient(&ap.row, &s2.first.eps_grad);
-                eps_h[j] = s2.eps_hess;
-            } else {
-                let s1 = pt.first(frame).map_err(kin)?;
-                eps_a[j] = s1.eps;
-                spatial::add_gradient(&mut f, ap.weight, &ap.row, &s1.force(&sec(s1.eps)));
+                // N eps_yy + EA eps_y eps_y^T.
+                let h = a.hessian6();
+                spatial::add_hessian(t, ap.weight, &ap.row, &(h * n + g * g.transpose() * ea));
+                eps_q[j] = spatial::scatter_gradient(&ap.row, &g);
+                eps_h[j] = h;
             }
             ev.energy += ap.weight * 0.5 * ea * eps_a[j] * eps_a[j];
         }
@@ -62,47 +59,45 @@ impl Beam {
         // there is the mean of the axial points.
         {
             let c = HOURGLASS * ea * self.element_length;
-            let pt = SpatialPoint::at(qe, &rule.mid);
+            let a = SpatialPoint::at(qe, &rule.mid).axial().map_err(kin)?;
             let mean = 1.0 / AXIAL_POINTS as f64;
+            let d = a.eps - mean * eps_a.iter().sum::<f64>();
             if let Some(t) = tangent.as_deref_mut() {
-                let s2 = pt.second(frame).map_err(kin)?;
-                let d = s2.first.eps - mean * eps_a.iter().sum::<f64>();
-                let mut g = spatial::scatter_gradient(&rule.mid, &s2.first.eps_grad);
+                let mut g = spatial::scatter_gradient(&rule.mid, &a.gradient());
                 for eq in &eps_q {
                     g -= eq * mean;
                 }
                 f += g * (c * d);
                 t.ger(c, &g, &g, 1.0);
-                spatial::add_hessian(t, c * d, &rule.mid, &s2.eps_hess);
+                spatial::add_hessian(t, c * d, &rule.mid, &a.hessian6());
                 for (ap, hq) in rule.axial.iter().zip(&eps_h) {
                     spatial::add_hessian(t, -c * d * mean, &ap.row, hq);
                 }
-                ev.energy += 0.5 * c * d * d;
             } else {
-                let s1 = pt.first(frame).map_err(kin)?;
-                let d = s1.eps - mean * eps_a.iter().sum::<f64>();
-                spatial::add_gradient(&mut f, c * d, &rule.mid, &s1.eps_grad);
+                spatial::add_gradient(&mut f, c * d, &rule.mid, &a.gradient());
                 for ap in &rule.axial {
-                    let e1 = SpatialPoint::at(qe, &ap.row).first(frame).map_err(kin)?;
-                    spatial::add_gradient(&mut f, -c * d * mean, &ap.row, &e1.eps_grad);
+                    let aj = SpatialPoint::at(qe, &ap.row).axial().map_err(kin)?;
+                    spatial::add_gradient(&mut f, -c * d * mean, &ap.row, &aj.gradient());
                 }
-                ev.energy += 0.5 * c * d * d;
             }
+            ev.energy += 0.5 * c * d * d;
         }
         let ws = self.state_per_point();
+        let wl = self.law_state_per_point();
         for (i, bp) in rule.bend.iter().enumerate() {
             let eps = bp.strain(&eps_a, means);
             let pt = SpatialPoint::at(qe, &bp.qp.row);
-            // Empty for a law without state (ws = 0).
-            let (sl, tr) = (
-                &slip[i * ws..(i + 1) * ws],
-                &mut trial[i * ws..(i + 1) * ws],
-            );
+            // The point's state: the law's slip state (empty for a law without state), then
+            // its committed section frame.
+            let (sl, fs) = state[i * ws..(i + 1) * ws].split_at(wl);
+            let (tr, ft) = trial[i * ws..(i + 1) * ws].split_at_mut(wl);
+            let frame = SectionFrame::from_state(fs).map_err(kin)?;
             let w = bp.qp.weight;
             let kappa;
             let r;
             if let Some(t) = tangent.as_deref_mut() {
-                let s2 = pt.second(frame).map_err(kin)?;
+                let s2 = pt.second(&frame).map_err(kin)?;
+                SectionFrame::write_state(&s2.first.tangent, &s2.first.axes[1], ft);
                 kappa = s2.first.kappa;
                 r = self.law.vector(&bp.station, eps, kappa, sl, tr);
                 let sec = SpatialSection {
@@ -125,7 +120,8 @@ impl Beam {
                     }
                 }
             } else {
-                let s1 = pt.first(frame).map_err(kin)?;
+                let s1 = pt.first(&frame).map_err(kin)?;
+                SectionFrame::write_state(&s1.tangent, &s1.axes[1], ft);
                 kappa = s1.kappa;
                 r = self.law.vector(&bp.station, eps, kappa, sl, tr);
                 let local = s1.kappa_grad[0] * r.moment[0] + s1.kappa_grad[1] * r.moment[1];
@@ -151,6 +147,7 @@ impl Beam {
                     kappa_y: kappa[0],
                     moment: r.moment[1],
                     energy_strain: r.energy_strain,
+                    energy_turn: r.energy_turn,
                     weight: w,
                     slipping: r.slipping,
                 };

@@ -160,6 +160,17 @@ pub struct SectionResponse {
     /// strain increment d eps the section dissipates `-energy_strain d eps` (SPEC 2: the
     /// non-potential work is reported as dissipation).
     pub energy_strain: f64,
+    /// The gradient of the stored energy with respect to the curvature vector at fixed strain
+    /// and slip, minus the moment (N m, section frame): normal to the bending direction. The
+    /// law applies the planar law in the plane of bending ([`SectionLaw::vector`]), so its
+    /// moment is parallel to the curvature, while the wires' levers `l_i` and, for a slipping
+    /// wire of the `continuous` and `paper` laws, the friction limits (through the wire's
+    /// angle from the neutral axis) turn with the bending direction: when it turns, the stored
+    /// energy changes by `energy_turn . d kappa` without work of the moment. Over a curvature
+    /// increment the section dissipates `-energy_turn . d kappa` (non-potential work, like
+    /// `energy_strain`). Zero for bending in a fixed plane, where `d kappa` is along the
+    /// bending direction.
+    pub energy_turn: [f64; 2],
     /// Work dissipated by slip from the committed state to this trial (J/m; hysteretic law).
     pub slip_work: f64,
     /// Number of slipping wires.
@@ -450,6 +461,7 @@ impl SectionLaw {
             moment_strain: [0.0; 2],
             energy: 0.5 * self.axial_stiffness * eps * eps + 0.5 * kb * knorm * knorm,
             energy_strain: 0.0,
+            energy_turn: [0.0; 2],
             slip_work: 0.0,
             slipping: 0,
         };
@@ -498,9 +510,20 @@ impl SectionLaw {
             } else {
                 [0.0; 2]
             };
+            // The stored energy's dependence on the friction limit of the active side, turned
+            // by the bending direction: d E/d cap d cap/d theta d theta/d kappa.
+            let cap_energy =
+                scale * a * (f.d_cap_pos * (gains[0] + 1.0) - f.d_cap_neg * (1.0 - gains[1]));
+            let limit_turn = if f.d_energy_cap != 0.0 && cap_energy != 0.0 && sin_t > 0.0 {
+                let g = -s * f.d_energy_cap * cap_energy / (sin_t * knorm);
+                [g * (p[0] - c * b[0]), g * (p[1] - c * b[1])]
+            } else {
+                [0.0; 2]
+            };
             for j in 0..2 {
                 let dlambda = (l[j] - lambda * kh[j]) / knorm;
                 dm[j] += f.d_strain * l[j] * lambda + turn[j] + f.force * dlambda;
+                r.energy_turn[j] += f.force * (l[j] - lambda * kh[j]) + limit_turn[j];
             }
             m += f.force * lambda;
             dm_deps += (f.d_cap_pos * gains[0] + f.d_cap_neg * gains[1]) * dscale * lambda;
@@ -617,6 +640,94 @@ impl SectionLaw {
                     phase: w.phase,
                     k_stick: law.k * arm * arm,
                     m_slip: cap * arm,
+                    critical_curvature: critical,
+                    state,
+                }
+            })
+            .collect()
+    }
+
+    /// Per-wire report for a curvature vector `kappa = (kappa_y, kappa_z)` in the section frame
+    /// (see [`Self::vector`]): each wire's phase is measured from the reference half `b` of
+    /// the neutral axis of the current bending direction (the law's convention, module docs),
+    /// in the sense from z toward y, wrapped to (-pi, pi]; its critical curvature is the
+    /// curvature magnitude at which it slips in this bending direction, with its lever
+    /// `R_w sin(theta)` and the capstan gain of its angle `theta` from `b`. With
+    /// `kappa_y = 0` this is [`Self::planar_wires`] up to round-off. At zero curvature the
+    /// report is for bending with the convex side toward +y.
+    pub fn vector_wires(
+        &self,
+        st: &Station,
+        eps: f64,
+        kappa: [f64; 2],
+        slip: &[f64],
+    ) -> Vec<WireReport> {
+        let Some(law) = self.layer else {
+            return Vec::new();
+        };
+        let (scale, _) = self.cap_scale(eps);
+        let knorm = kappa[0].hypot(kappa[1]);
+        let (kh, b) = if knorm == 0.0 {
+            ([0.0, -1.0], [0.0, 1.0])
+        } else {
+            ([kappa[0] / knorm, kappa[1] / knorm], neutral_axis(kappa))
+        };
+        let beta = b[0].atan2(b[1]);
+        let factor = if self.kind == LawKind::Paper {
+            law.paper_factor
+        } else {
+            1.0
+        };
+        st.wires
+            .iter()
+            .enumerate()
+            .map(|(i, w)| {
+                let l = w.lever;
+                let lambda = l[0] * kh[0] + l[1] * kh[1];
+                let arm = lambda.abs();
+                let p = w.position;
+                let c = (p[0] * b[0] + p[1] * b[1]).clamp(-1.0, 1.0);
+                let sin_t = (p[0] * b[1] - p[1] * b[0]).abs();
+                let theta = sin_t.atan2(c);
+                let gains = [
+                    (law.capstan * theta).exp_m1(),
+                    -(-law.capstan * theta).exp_m1(),
+                ];
+                let f = slider(
+                    self.kind,
+                    law.k,
+                    lambda * knorm,
+                    scale * gains[0],
+                    scale * gains[1],
+                    law.paper_factor,
+                    slip.get(i).copied().unwrap_or(0.0),
+                );
+                let stretched = if f.force != 0.0 {
+                    f.force > 0.0
+                } else {
+                    lambda >= 0.0
+                };
+                let gain = gains[if stretched { 0 } else { 1 }];
+                let ratio = if sin_t > 1e-12 {
+                    Some(gain / sin_t)
+                } else if theta < 0.5 * std::f64::consts::PI {
+                    Some(law.capstan)
+                } else {
+                    None
+                };
+                let critical = ratio.map(|r| scale * r / (law.k * factor * law.radius));
+                let state = if arm > 1e-12 * law.radius {
+                    f.state
+                } else if critical.is_some_and(|c| knorm > c) {
+                    WireState::Slip
+                } else {
+                    WireState::Stick
+                };
+                WireReport {
+                    wire: i + 1,
+                    phase: crate::geometry::wrap_angle(w.phase - beta),
+                    k_stick: law.k * arm * arm,
+                    m_slip: scale * gain * arm,
                     critical_curvature: critical,
                     state,
                 }

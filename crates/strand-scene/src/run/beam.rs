@@ -4,12 +4,15 @@
 use std::path::Path;
 use std::time::Instant;
 
-use strand_ancf::beam::{Beam, BeamSpec, ElementKind, PointState, Support as BeamSupport};
-use strand_ancf::dynamics::{DynamicOptions, Scheme, run_dynamic};
+use strand_ancf::beam::{
+    Beam, BeamSpec, ElementKind, PointLoad, PointState, Support as BeamSupport, SupportMotion,
+};
+use strand_ancf::dynamics::{DynamicOptions, Scheme, run_dynamic_from};
+use strand_ancf::initial::InitialState;
 use strand_ancf::statics::{StaticOptions, solve_static};
 use strand_core::{LawKind, SectionLaw, WireState};
 
-use crate::output::{Csv, FrameFiles, number};
+use crate::output::{Csv, FrameFiles, number, write_vtk_polyline};
 use crate::scene::{Analysis, BeamModel, End, IntegratorKind, Scene, SupportKind};
 
 use super::record::{BALANCE_WARNING, RunError, RunOptions, RunSummary, finish, io_err};
@@ -75,7 +78,24 @@ pub fn dynamic_options(scene: &Scene) -> Option<DynamicOptions> {
     Some(DynamicOptions::new(dy.duration, scheme, dy.output_interval))
 }
 
+/// The motion table of the support at `end`, if it moves.
+fn beam_motion(scene: &Scene, end: End) -> Result<Option<SupportMotion>, String> {
+    let Some(rows) = scene
+        .supports
+        .iter()
+        .find(|s| s.at == end)
+        .and_then(|s| s.motion.as_ref())
+    else {
+        return Ok(None);
+    };
+    SupportMotion::new(rows).map(Some)
+}
+
 fn beam_of(scene: &Scene, name: &str, model: &BeamModel, kind: LawKind) -> Result<Beam, RunError> {
+    let setup = |message: String| RunError::Setup {
+        model: name.to_string(),
+        message,
+    };
     let strand = &scene.strand;
     let law = SectionLaw::with_options(strand, kind, &scene.section);
     let mass = model.mass_per_length.unwrap_or(strand.mass_per_length());
@@ -92,6 +112,17 @@ fn beam_of(scene: &Scene, name: &str, model: &BeamModel, kind: LawKind) -> Resul
         gravity: scene.gravity,
         start: beam_support(scene, End::Start),
         end: beam_support(scene, End::End),
+        phase_reference: Some(scene.phase_reference),
+        point_loads: scene
+            .point_forces
+            .iter()
+            .map(|p| PointLoad {
+                s: p.s,
+                force: p.force,
+            })
+            .collect(),
+        start_motion: beam_motion(scene, End::Start).map_err(setup)?,
+        end_motion: beam_motion(scene, End::End).map_err(setup)?,
     };
     Beam::new(spec, law).map_err(|e| RunError::Setup {
         model: name.to_string(),
@@ -111,15 +142,42 @@ pub(crate) fn run_beam(
     let law = beam.law();
     let dir = opts.out.join(name);
     std::fs::create_dir_all(&dir).map_err(io_err(&dir))?;
+    let element = match beam.spec().element {
+        ElementKind::Planar => "planar ANCF cable beam in the XY plane (4 coordinates per node)",
+        ElementKind::Spatial => {
+            "spatial ANCF cable beam (6 coordinates per node), section frames carried without \
+             spin about the tangent, committed with every accepted step"
+        }
+    };
     let mut built = vec![
         format!(
-            "planar ANCF cable beam, {} elements of {:.4e} m, {} bending points and 2 axial points per element",
+            "{element}, {} elements of {:.4e} m, {} bending points and 2 axial points per element",
             model.elements,
             beam.element_length(),
             beam.bending_points()
         ),
         format!("section law `{kind}`"),
     ];
+    if beam.spec().element == ElementKind::Spatial && law.sliders() > 0 {
+        let r = scene.phase_reference;
+        built.push(format!(
+            "wire phases measured from ({:.4}, {:.4}, {:.4}) at x = 0",
+            r[0], r[1], r[2]
+        ));
+    }
+    if !scene.point_forces.is_empty() {
+        built.push(format!(
+            "{} point force(s), constant",
+            scene.point_forces.len()
+        ));
+    }
+    if beam.has_moving_supports() {
+        built.push(
+            "moving supports: the held position follows its table (statics: the last row with \
+             the load steps)"
+                .into(),
+        );
+    }
     if law.sliders() > 0 {
         built.push(format!(
             "{} friction sliders per bending point",
@@ -159,7 +217,7 @@ pub(crate) fn run_beam(
     let result = match scene.analysis {
         Analysis::Static { load_steps } => {
             summary.analysis = "static".into();
-            run_static(&beam, load_steps, &dir, &mut summary, &mut |f| {
+            run_static(&beam, load_steps, &dir, opts.vtk, &mut summary, &mut |f| {
                 progress(name, f)
             })
         }
@@ -173,9 +231,21 @@ pub(crate) fn run_beam(
                 ));
             }
             let o = dynamic_options(scene).expect("a dynamic analysis");
-            run_dynamics(&beam, &o, &dir, opts.vtk, &mut summary, &mut |f| {
-                progress(name, f)
-            })
+            match InitialState::rigid(&beam, scene.velocity, scene.angular_velocity) {
+                Err(e) => Err(e.to_string()),
+                Ok(init) => {
+                    if init.discarded > 0.0 {
+                        summary.warnings.push(format!(
+                            "the initial velocity field moves a fixed support (up to {:.3e} \
+                             m/s): the support holds those coordinates at rest",
+                            init.discarded
+                        ));
+                    }
+                    run_dynamics(&beam, &o, &init, &dir, opts.vtk, &mut summary, &mut |f| {
+                        progress(name, f)
+                    })
+                }
+            }
         }
     };
     finish(summary, result, &dir)
@@ -191,7 +261,7 @@ fn write_state(
 ) -> Result<(), String> {
     let law = beam.law();
     let ea = law.axial_stiffness();
-    let w = law.state_len();
+    let planar = beam.spec().element == ElementKind::Planar;
     let p = dir.join("centerline.csv");
     let e = |e: std::io::Error| format!("writing {}: {e}", p.display());
     let mut c = Csv::create(
@@ -214,28 +284,28 @@ fn write_state(
     for (i, pt) in points.iter().enumerate() {
         let (r, _) = beam.sample(q, pt.x);
         let st = law.station(pt.x);
-        let sl = if w > 0 {
-            &slip[i * w..(i + 1) * w]
-        } else {
-            &slip[..0]
-        };
+        let sl = beam.point_slip(slip, i);
         // Planar: signed curvature and the planar secant; spatial: the curvature magnitude and
         // |M| / |kappa| of the vector law.
+        let kappa = [pt.kappa_y, pt.kappa];
+        let k = pt.kappa_y.hypot(pt.kappa);
         let (curvature, secant) = if pt.kappa_y == 0.0 {
             (pt.kappa, law.planar_secant(&st, pt.eps, pt.kappa, sl))
         } else {
             let mut tr = vec![0.0; sl.len()];
-            let r = law.vector(&st, pt.eps, [pt.kappa_y, pt.kappa], sl, &mut tr);
-            let k = pt.kappa_y.hypot(pt.kappa);
+            let r = law.vector(&st, pt.eps, kappa, sl, &mut tr);
             (k, r.moment[0].hypot(r.moment[1]) / k)
         };
         c.row(&[pt.x, r[0], r[1], r[2], curvature, ea * pt.eps, secant])
             .map_err(e)?;
-        // The per-wire table follows the planar phase convention: planar states only.
-        if pt.kappa_y != 0.0 {
-            continue;
-        }
-        for wr in law.planar_wires(&st, pt.eps, pt.kappa, sl) {
+        // Phases from the neutral axis of the current bending direction: the planar
+        // convention for the planar element, the vector law's in 3D.
+        let report = if planar {
+            law.planar_wires(&st, pt.eps, pt.kappa, sl)
+        } else {
+            law.vector_wires(&st, pt.eps, kappa, sl)
+        };
+        for wr in report {
             let crit = wr.critical_curvature.map_or("inf".to_string(), number);
             let state = match wr.state {
                 WireState::Stick => "stick",
@@ -264,6 +334,7 @@ fn run_static(
     beam: &Beam,
     load_steps: usize,
     dir: &Path,
+    vtk: bool,
     summary: &mut RunSummary,
     progress: &mut dyn FnMut(f64),
 ) -> Result<(), String> {
@@ -283,28 +354,55 @@ fn run_static(
             .warnings
             .push(format!("{} load steps were cut and retried", sol.cuts));
     }
+    if vtk {
+        write_static_vtk(beam, &sol.q, dir)?;
+    }
     write_state(beam, &sol.q, &sol.slip, &sol.points, dir)
+}
+
+/// Centreline of `q` sampled 4 times per element (m).
+fn centreline(beam: &Beam, q: &[f64]) -> Vec<[f64; 3]> {
+    let samples = 4 * beam.spec().elements;
+    (0..=samples)
+        .map(|i| beam.sample(q, beam.length() * i as f64 / samples as f64).0)
+        .collect()
+}
+
+/// The static state as one VTK frame, `vtk/centerline_00000.vtk`, like a dynamic run's.
+fn write_static_vtk(beam: &Beam, q: &[f64], dir: &Path) -> Result<(), String> {
+    let d = dir.join("vtk");
+    let path = d.join("centerline_00000.vtk");
+    std::fs::create_dir_all(&d)
+        .and_then(|_| write_vtk_polyline(&path, "static equilibrium", &centreline(beam, q), &[]))
+        .map_err(|e| format!("writing {}: {e}", path.display()))
 }
 
 fn run_dynamics(
     beam: &Beam,
     opts: &DynamicOptions,
+    init: &InitialState,
     dir: &Path,
     vtk: bool,
     summary: &mut RunSummary,
     progress: &mut dyn FnMut(f64),
 ) -> Result<(), String> {
-    let mut files = FrameFiles::create(dir, vtk, &["non_potential"])?;
+    let moving = beam.has_moving_supports();
+    let extra: &[&str] = if moving {
+        &["non_potential", "support_work"]
+    } else {
+        &["non_potential"]
+    };
+    let mut files = FrameFiles::create(dir, vtk, extra)?;
     let n = beam.spec().elements;
     let nd = beam.node_coords();
     let k = n * nd;
     // Velocity of the tip: the last node's position coordinates.
     let dim = nd / 2;
     let mut write_error: Option<String> = None;
-    let mut last_q = beam.reference().to_vec();
+    let mut last_q = init.q.clone();
     let mut last_points: Vec<PointState> = Vec::new();
     let t0 = Instant::now();
-    let result = run_dynamic(beam, opts, &mut |f| {
+    let result = run_dynamic_from(beam, opts, init, &mut |f| {
         if write_error.is_some() {
             return;
         }
@@ -312,24 +410,17 @@ fn run_dynamics(
         let (mut x, mut v) = ([0.0; 3], [0.0; 3]);
         x[..dim].copy_from_slice(&f.q[k..k + dim]);
         v[..dim].copy_from_slice(&f.v[k..k + dim]);
-        let energies = [
+        let all = [
             e.kinetic,
             e.gravity,
             e.elastic,
             e.dissipated,
             e.total(),
             e.non_potential,
+            e.supports,
         ];
-        let centreline = || {
-            let samples = 4 * n;
-            (0..=samples)
-                .map(|i| {
-                    beam.sample(f.q, beam.length() * i as f64 / samples as f64)
-                        .0
-                })
-                .collect()
-        };
-        if let Err(err) = files.write(f.t, x, v, &energies, centreline) {
+        let energies = &all[..if moving { 7 } else { 6 }];
+        if let Err(err) = files.write(f.t, x, v, energies, || centreline(beam, f.q)) {
             write_error = Some(format!("writing results: {err}"));
         }
         last_q.copy_from_slice(f.q);

@@ -1,8 +1,10 @@
 //! Runs the fine finite-segment model of a scene (SPEC 4) and writes its result files.
 //!
-//! The fine model is laid along +X from the origin; a scene with another initial direction
-//! runs in that frame with gravity rotated into it, and every written position and velocity is
-//! rotated back, so the results are in the scene's axes.
+//! The fine model is laid along +X from the origin with wire phases measured from +Z; a scene
+//! runs in the frame where its initial direction is +X and its phase reference +Z (so every
+//! wire sits where the equivalent model puts it), with gravity, point forces, velocities and
+//! support motions rotated into it, and every written position and velocity is rotated back,
+//! so the results are in the scene's axes.
 //!
 //! Measured quantities along the strand (`centerline.csv`), at every node of the core's
 //! centreline (its ends and the midpoints of its joint gaps):
@@ -30,6 +32,7 @@ use strand_fine::{
 use super::record::{RunError, RunOptions, RunSummary, finish, io_err};
 use crate::output::{Csv, FrameFiles, number};
 use crate::scene::{Analysis, End, IntegratorKind, Scene, SupportKind};
+use strand_ancf::beam::SupportMotion;
 
 /// Safety factor on the explicit stable step of the fine model. (With the step at 0.9 of
 /// the linear limit instead, the Fig. 8 clamped pendulum stays stable but its energy balance,
@@ -45,13 +48,23 @@ fn support(scene: &Scene, end: End) -> fine::Support {
     }
 }
 
-/// Rotation taking +X to the scene's initial direction.
-fn frame(direction: [f64; 3]) -> UnitQuaternion<f64> {
+/// Rotation taking +X to the scene's initial direction and +Z to its phase reference (a unit
+/// vector orthogonal to the direction).
+fn frame(direction: [f64; 3], reference: [f64; 3]) -> UnitQuaternion<f64> {
     let d = Vector3::from(direction).normalize();
-    UnitQuaternion::rotation_between(&Vector3::x(), &d).unwrap_or_else(|| {
-        // Antiparallel: half a turn about Z.
-        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), std::f64::consts::PI)
-    })
+    let z = Vector3::from(reference).normalize();
+    let m = nalgebra::Matrix3::from_columns(&[d, z.cross(&d), z]);
+    UnitQuaternion::from_rotation_matrix(&nalgebra::Rotation3::from_matrix(&m))
+}
+
+/// The motion table of the support at `end`, if it moves.
+fn motion(scene: &Scene, end: End) -> Option<SupportMotion> {
+    let rows = scene
+        .supports
+        .iter()
+        .find(|s| s.at == end)
+        .and_then(|s| s.motion.as_ref())?;
+    Some(SupportMotion::new(rows).expect("validated by the scene"))
 }
 
 /// Runs the fine model `m` of `scene` and writes `DIR/fine/`.
@@ -63,7 +76,7 @@ pub(crate) fn run_fine(
 ) -> Result<RunSummary, RunError> {
     let name = "fine";
     let strand = &scene.strand;
-    let rot = frame(scene.direction);
+    let rot = frame(scene.direction, scene.phase_reference);
     let n = m.segments_per_wire;
     let mut model = FineModel::from_strand(
         strand,
@@ -75,6 +88,9 @@ pub(crate) fn run_fine(
         support(scene, End::End),
     );
     model.gravity = rot.inverse() * Vector3::from(scene.gravity);
+    for p in &scene.point_forces {
+        model.add_point_force(p.s, rot.inverse() * Vector3::from(p.force));
+    }
     let mut bound = None;
     if m.bind_free_end {
         for (end, e) in [(End::Start, fine::End::Start), (End::End, fine::End::End)] {
@@ -143,7 +159,21 @@ pub(crate) fn run_fine(
         built,
         warnings,
     };
+    if !scene.point_forces.is_empty() {
+        summary.built.push(format!(
+            "{} point force(s) on the core, split between the segments around them",
+            scene.point_forces.len()
+        ));
+    }
     let mut state = model.rest_state();
+    if scene.starts_moving() {
+        model.set_rigid_velocity(
+            &mut state,
+            rot.inverse() * Vector3::from(scene.velocity),
+            rot.inverse() * Vector3::from(scene.angular_velocity),
+        );
+    }
+    let motions = [motion(scene, End::Start), motion(scene, End::End)];
     let result = match scene.analysis {
         Analysis::Static { load_steps } => {
             summary.analysis = "static".into();
@@ -176,8 +206,9 @@ pub(crate) fn run_fine(
                 Ok(dt) => {
                     summary.time_step = Some(dt);
                     run_dynamic(
-                        &model,
+                        &mut model,
                         &mut state,
+                        &motions,
                         &Frames {
                             duration: dy.duration,
                             dt,
@@ -290,8 +321,9 @@ struct Frames {
 }
 
 fn run_dynamic(
-    model: &FineModel,
+    model: &mut FineModel,
     state: &mut ModelState,
+    motions: &[Option<SupportMotion>; 2],
     frames: &Frames,
     rot: UnitQuaternion<f64>,
     dir: &Path,
@@ -299,11 +331,19 @@ fn run_dynamic(
     summary: &mut RunSummary,
     progress: &mut dyn FnMut(f64),
 ) -> Result<(), String> {
-    let mut files = FrameFiles::create(
-        dir,
-        vtk,
-        &["kinetic_rotation", "contact", "friction_stored"],
-    )?;
+    let moving = motions.iter().any(Option::is_some);
+    let mut extra = vec!["kinetic_rotation", "contact", "friction_stored"];
+    if moving {
+        extra.push("support_work");
+    }
+    let mut files = FrameFiles::create(dir, vtk, &extra)?;
+    let ends = [fine::End::Start, fine::End::End];
+    // Support displacement (model axes) at time t.
+    let place = |m: usize, t: f64| -> Vector3<f64> {
+        motions[m].as_ref().map_or(Vector3::zeros(), |mo| {
+            rot.inverse() * Vector3::from(mo.displacement(t))
+        })
+    };
     let core = &model.wires[0].chain;
     let last = core.len() - 1;
     let tip_offset = core.segments[last].end_offset();
@@ -315,7 +355,16 @@ fn run_dynamic(
     let mut int = Integrator::new(model, state, dt);
     let e0 = int.energies(model, state);
     let (mut err, mut max_kinetic) = (0.0f64, 0.0f64);
-    let mut write = |t: f64, state: &ModelState, e: &fine::Energies| -> std::io::Result<()> {
+    // Work of the moving supports (J): minus the force on the ground times its displacement,
+    // trapezoidal over each step.
+    let mut support_work = 0.0;
+    let mut ground_force = ends.map(|e| model.support_force(state, e));
+    let mut write = |t: f64,
+                     model: &FineModel,
+                     state: &ModelState,
+                     e: &fine::Energies,
+                     work: f64|
+     -> std::io::Result<()> {
         let x = rot * state.wires[0].poses[last].point(&tip_offset);
         let v = rot * fine::dynamics::point_velocity(model, state, 0, last, &tip_offset);
         let energies = [
@@ -323,12 +372,14 @@ fn run_dynamic(
             e.gravity,
             e.spring + e.contact + e.friction_stored,
             e.friction_work,
-            e.balance(),
+            e.balance() - work,
             e.kinetic_rotation,
             e.contact,
             e.friction_stored,
+            work,
         ];
-        files.write(t, x.into(), v.into(), &energies, || {
+        let n = if moving { 9 } else { 8 };
+        files.write(t, x.into(), v.into(), &energies[..n], || {
             model
                 .core_centreline(state)
                 .iter()
@@ -336,20 +387,37 @@ fn run_dynamic(
                 .collect()
         })
     };
-    write(0.0, state, &e0).map_err(|e| format!("writing results: {e}"))?;
+    write(0.0, model, state, &e0, 0.0).map_err(|e| format!("writing results: {e}"))?;
     let t0 = Instant::now();
     let mut failure = None;
     for k in 1..=steps {
+        // The ground takes its place at the step's end before the drift's loads.
+        let mut shift = [Vector3::zeros(); 2];
+        for (m, end) in ends.into_iter().enumerate() {
+            if motions[m].is_some() {
+                let (a, b) = (place(m, int.time), place(m, int.time + int.dt));
+                model.move_support(end, b);
+                shift[m] = b - a;
+                support_work -= 0.5 * ground_force[m].dot(&shift[m]);
+            }
+        }
         int.step(model, state);
+        for (m, end) in ends.into_iter().enumerate() {
+            if motions[m].is_some() {
+                ground_force[m] = model.support_force(state, end);
+                support_work -= 0.5 * ground_force[m].dot(&shift[m]);
+            }
+        }
         let e = int.energies(model, state);
         if !e.balance().is_finite() {
             failure = Some(non_finite(model, state, k, int.time));
             break;
         }
-        err = err.max((e.balance() - e0.balance()).abs());
+        err = err.max((e.balance() - support_work - e0.balance()).abs());
         max_kinetic = max_kinetic.max(e.kinetic_translation + e.kinetic_rotation);
         if k % every == 0 || k == steps {
-            write(int.time, state, &e).map_err(|e| format!("writing results: {e}"))?;
+            write(int.time, model, state, &e, support_work)
+                .map_err(|e| format!("writing results: {e}"))?;
             progress(int.time / frames.duration);
         }
     }
@@ -553,4 +621,66 @@ fn measure_along(model: &FineModel, state: &ModelState, loads: &[WireLoads]) -> 
         });
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::run::{BeamModelKind, build_beam};
+
+    /// The fine model lays wire 1 (phase 0 at x = 0) along the scene's phase reference, where
+    /// the equivalent model's section frame puts phase 0, for any initial direction and with
+    /// the default or a given reference.
+    #[test]
+    fn the_same_wire_sits_at_the_same_place_in_both_models() {
+        let text = include_str!("../../../../validation/paper-fig7-g8.json");
+        let mut file: crate::format::SceneFile = serde_json::from_str(text).unwrap();
+        let h = 0.5f64.sqrt();
+        for (d, r) in [
+            ([1.0, 0.0, 0.0], None),
+            ([0.0, 0.0, 1.0], None),
+            ([0.0, 0.0, -1.0], None),
+            ([-1.0, 0.0, 0.0], None),
+            ([0.0, h, h], None),
+            ([0.3, -0.2, 0.93], None),
+            ([0.3, -0.2, 0.93], Some([1.0, 2.0, 0.0])),
+            ([-1.0, 1e-9, 0.0], Some([0.0, 1.0, 1.0])),
+        ] {
+            let init = file.initial.get_or_insert(crate::format::InitialFile {
+                direction: None,
+                phase_reference: None,
+                velocity: None,
+                angular_velocity: None,
+            });
+            init.direction = Some(d);
+            init.phase_reference = r;
+            let scene = Scene::from_file(file.clone()).unwrap();
+            let rot = frame(scene.direction, scene.phase_reference);
+            let dir = Vector3::from(scene.direction);
+            let reference = Vector3::from(scene.phase_reference);
+            assert!((rot * Vector3::x() - dir).norm() < 1e-14, "{d:?}");
+            assert!((rot * Vector3::z() - reference).norm() < 1e-14, "{d:?}");
+            // The fine model's wire 1 at x = 0, relative to the core, in scene axes.
+            let layer = scene.strand.layer().unwrap();
+            let chain = strand_fine::Chain::helix(layer, 0, scene.strand.length(), 40);
+            let start = chain.segments[0].start_offset();
+            let wire = rot * chain.rest[0].point(&start);
+            let expect = reference * layer.radius;
+            assert!(
+                (wire - expect).norm() < 1e-12,
+                "{d:?}: {wire:?} vs {expect:?}"
+            );
+            // The equivalent model's phase axis at the first bending point.
+            let beam = build_beam(&scene, BeamModelKind::Equivalent).unwrap();
+            if let Some([_, _, ez]) = beam.point_frame(&beam.initial_state(), 0) {
+                assert!((ez - reference).norm() < 1e-14, "{d:?}");
+            } else {
+                assert_eq!(
+                    scene.phase_reference,
+                    [0.0, 0.0, 1.0],
+                    "planar: phases from Z"
+                );
+            }
+        }
+    }
 }
