@@ -380,7 +380,8 @@ fn small_curvature_ei(b: &Beam) -> f64 {
     if law.kind() == LawKind::Constant {
         law.base_bending_stiffness()
     } else {
-        law.strand().max_bending_stiffness(law.options().base_stiffness)
+        law.strand()
+            .max_bending_stiffness(law.options().base_stiffness)
     }
 }
 

@@ -39,8 +39,8 @@ mod planar_element;
 mod quadrature;
 mod sampling;
 mod spatial_element;
-mod strain_recovery;
 mod state;
+mod strain_recovery;
 mod supports;
 
 use nalgebra::{DMatrix, Vector3};

@@ -445,14 +445,26 @@ fn run_dynamics(
     summary.non_potential_work = Some(s.last.non_potential);
     // Above round-off of the energy sums: the law has put energy into the strand.
     if s.last.non_potential > 1e-9 * s.max_kinetic {
-        summary.warnings.push(format!(
-            "the `{}` law put {:.3e} J into the strand ({:.2e} of the largest kinetic energy): \
-             the work of its non-potential part (energy.csv `non_potential`) is positive; the \
-             motion is not physical; use `hysteretic`",
-            beam.law().kind(),
+        let kind = beam.law().kind();
+        let (work, relative) = (
             s.last.non_potential,
-            s.last.non_potential / s.max_kinetic.max(f64::MIN_POSITIVE)
-        ));
+            s.last.non_potential / s.max_kinetic.max(f64::MIN_POSITIVE),
+        );
+        summary.warnings.push(if kind == LawKind::Hysteretic {
+            // The hysteretic law has no strain term: only the 3D turn term is left.
+            format!(
+                "the `hysteretic` law put {work:.3e} J into the strand ({relative:.2e} of the \
+                 largest kinetic energy): the work of the wires' moment normal to the bending \
+                 direction, which the section law does not apply, as the bending direction \
+                 turns under slipped wires (energy.csv `non_potential`)"
+            )
+        } else {
+            format!(
+                "the `{kind}` law put {work:.3e} J into the strand ({relative:.2e} of the largest \
+                 kinetic energy): the work of its non-potential part (energy.csv \
+                 `non_potential`) is positive; the motion is not physical; use `hysteretic`"
+            )
+        });
     }
     let relative = s.balance_error / s.max_kinetic.max(f64::MIN_POSITIVE);
     if relative > BALANCE_WARNING {
