@@ -95,8 +95,7 @@ pub struct BeamSpec {
     /// Support at x = L.
     pub end: Option<Support>,
     /// Direction of phase zero at x = 0 (projected off `direction`); `None` for
-    /// [`default_phase_reference`](crate::spatial::default_phase_reference). A planar beam
-    /// measures phases from Z.
+    /// [`default_phase_reference`]. A planar beam measures phases from Z.
     pub phase_reference: Option<[f64; 3]>,
     /// Constant point forces.
     pub point_loads: Vec<PointLoad>,
