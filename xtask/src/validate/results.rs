@@ -207,7 +207,7 @@ mod tests {
     fn reads_and_interpolates() {
         let t = Table::parse("s,x,y,z,tension\n0,0,0,0,2\n1,1,-1,3,0\n").unwrap();
         assert_eq!(t.column("y").unwrap(), [0.0, -1.0]);
-        assert!(t.column("z").is_err());
+        assert!(t.column("w").is_err());
         let c = Centerline {
             s: t.column("s").unwrap(),
             x: t.column("x").unwrap(),
