@@ -10,6 +10,13 @@ use crate::plot::{Chart, Mark, Series};
 use crate::validate::checks::{self, BeamKind};
 use crate::validate::results::{Centerline, Energy, Table};
 
+/// The paper's position error between its equivalent and fine models in statics (Fig. 7,
+/// "of order 1e-3 m") and within 0.5 s of the pendulum (Fig. 8, "of order 1e-2 m"), m: the
+/// verdicts use these numbers as they stand.
+const PAPER_STATIC: f64 = 1e-3;
+/// See [`PAPER_STATIC`].
+const PAPER_DYNAMIC: f64 = 1e-2;
+
 /// |g| of a scene (m/s^2).
 pub(crate) fn gravity(scene: &Scene) -> f64 {
     let [x, y, z] = scene.gravity;
@@ -180,8 +187,8 @@ pub fn fig7(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Findin
                  is the main source of the position error, of order 1e-3 m";
     let finding = match missing {
         None => {
-            // "Of order 1e-3 m": below 5e-3 m.
-            let ok = worst < 5e-3;
+            // The paper's own figure, 1e-3 m.
+            let ok = worst <= PAPER_STATIC;
             Finding::new(
                 "Fig. 7",
                 paper,
@@ -195,8 +202,11 @@ pub fn fig7(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Findin
                     "distance at equal material coordinate. It starts at the root, where every \
                      wire slips: there the models' secant stiffness M/kappa averaged over the \
                      first {ROOT_REGION} m is, in K_min, {}; the fine strand curls a little \
-                     less, and the distance it makes grows toward the tip. For scale, the \
-                     equivalent model against the elastica with the same section law: {}",
+                     less, and the distance it makes grows toward the tip. These scenes name \
+                     the paper's K_min (eta = cos^3 alpha); the comparison with the corrected \
+                     law (Costello's K_min, 16 elements) is `cargo xtask validate --scene \
+                     paper-fig7-g8` (and g10, g12). For scale, the equivalent model against the \
+                     elastica with the same section law: {}",
                     root.join("; "),
                     independent.join("; ")
                 ),
@@ -292,8 +302,8 @@ pub fn fig8(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Findin
                 } else {
                     ""
                 };
-                // "Of order 1e-2 m": below 5e-2 m.
-                let verdict = if e05 <= 0.05 {
+                // The paper's own figure, 1e-2 m.
+                let verdict = if e05 <= PAPER_DYNAMIC {
                     Verdict::Agrees
                 } else {
                     Verdict::Differs

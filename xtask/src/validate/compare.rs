@@ -288,6 +288,7 @@ mod tests {
             energy: Some(0.01),
             why: "test".into(),
             quick: None,
+            equivalent: None,
         };
         let r = rows("s", "equivalent-vs-fine", &a, &b, true, &tol);
         let failed: Vec<&str> = r

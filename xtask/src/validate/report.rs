@@ -64,6 +64,9 @@ pub struct Row {
     pub note: String,
     /// Why the tolerance is what it is (from the tolerance file).
     pub why: String,
+    /// How far inside its tolerance the value lies: tolerance / value for an upper bound,
+    /// value / tolerance for a lower one (above 1 passes); `None` without both.
+    pub margin: Option<f64>,
 }
 
 impl Row {
@@ -92,6 +95,7 @@ impl Row {
             status: if ok { Status::Pass } else { Status::Fail },
             note: String::new(),
             why: String::new(),
+            margin: margin(value, bound),
         }
     }
 
@@ -107,6 +111,7 @@ impl Row {
             status: Status::Fail,
             note: why.into(),
             why: String::new(),
+            margin: None,
         }
     }
 
@@ -148,12 +153,36 @@ impl Row {
         }
     }
 
+    fn margin_text(&self) -> String {
+        match self.margin {
+            Some(m) if m.is_finite() => format!("{m:.2}"),
+            Some(_) => "inf".into(),
+            None => "-".into(),
+        }
+    }
+
     fn check_text(&self) -> String {
         if self.metric == "-" {
             self.check.clone()
         } else {
             format!("{} {}", self.check, self.metric)
         }
+    }
+}
+
+/// The margin of `value` against `bound` (see [`Row::margin`]).
+fn margin(value: f64, bound: Bound) -> Option<f64> {
+    if !value.is_finite() {
+        return None;
+    }
+    match bound {
+        Bound::AtMost(t) => Some(if value == 0.0 {
+            f64::INFINITY
+        } else {
+            t / value
+        }),
+        Bound::AtLeast(t) if t != 0.0 => Some(value / t),
+        _ => None,
     }
 }
 
@@ -240,8 +269,15 @@ impl Report {
 
     /// The table as aligned plain text.
     pub fn table(&self) -> String {
-        let head = [self.label.as_str(), "check", "value", "tolerance", "result"];
-        let cells: Vec<[String; 5]> = self
+        let head = [
+            self.label.as_str(),
+            "check",
+            "value",
+            "tolerance",
+            "margin",
+            "result",
+        ];
+        let cells: Vec<[String; 6]> = self
             .rows
             .iter()
             .map(|r| {
@@ -250,6 +286,7 @@ impl Report {
                     r.check_text(),
                     r.value_text(),
                     r.bound_text(),
+                    r.margin_text(),
                     r.status.label().to_string(),
                 ]
             })
@@ -266,7 +303,7 @@ impl Report {
                 if i > 0 {
                     s.push_str("  ");
                 }
-                if i == 2 || i == 3 {
+                if (2..=4).contains(&i) {
                     let _ = write!(s, "{v:>w$}");
                 } else {
                     let _ = write!(s, "{v:<w$}");
@@ -324,17 +361,18 @@ impl Report {
         let _ = writeln!(s, "* result: {}\n", self.summary_line());
         let _ = writeln!(
             s,
-            "| {} | check | value | tolerance | result |\n|---|---|---:|---:|---|",
+            "| {} | check | value | tolerance | margin | result |\n|---|---|---:|---:|---:|---|",
             self.label
         );
         for r in &self.rows {
             let _ = writeln!(
                 s,
-                "| {} | {} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {} |",
                 r.scene,
                 r.check_text(),
                 r.value_text(),
                 r.bound_text(),
+                r.margin_text(),
                 r.status.label()
             );
         }
@@ -376,8 +414,10 @@ mod tests {
     fn bounds_judge_values() {
         let r = Row::measured("s", "c", "m", 1.0, "m", Bound::AtMost(2.0));
         assert_eq!(r.status, Status::Pass);
+        assert_eq!(r.margin, Some(2.0));
         let r = Row::measured("s", "c", "m", 3.0, "m", Bound::AtMost(2.0));
         assert_eq!(r.status, Status::Fail);
+        assert!(r.margin.unwrap() < 1.0);
         let r = Row::measured("s", "c", "order", 1.5, "", Bound::AtLeast(2.0));
         assert_eq!(r.status, Status::Fail);
         let r = Row::measured("s", "c", "m", f64::NAN, "m", Bound::AtMost(2.0));

@@ -49,6 +49,23 @@ pub struct DistanceTol {
     /// Run this check in `--quick` (default: the scene's setting).
     #[serde(default)]
     pub quick: Option<bool>,
+    /// `equivalent-vs-fine` only: the equivalent model of this comparison where it differs
+    /// from the scene's (the paper scenes name the paper's base stiffness to reproduce its
+    /// figures; the comparison with the fine model uses the corrected law).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub equivalent: Option<EquivalentVariant>,
+}
+
+/// The equivalent model of a comparison, changed from the scene's.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq, Default)]
+#[serde(deny_unknown_fields)]
+pub struct EquivalentVariant {
+    /// Number of elements.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub elements: Option<usize>,
+    /// `section.base_stiffness` (`costello`, `foti`, `papailiou`, `paper`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub base_stiffness: Option<String>,
 }
 
 /// One tension value the paper reports.
@@ -355,6 +372,26 @@ fn validate_spec(scene: &str, spec: &CheckSpec) -> anyhow::Result<()> {
                 ),
                 (None, _) => {}
             }
+            match (&t.equivalent, spec) {
+                (Some(v), CheckSpec::EquivalentVsFine(_)) => {
+                    if v.elements == Some(0) {
+                        bail!("{}: must be at least 1", at("equivalent.elements"));
+                    }
+                    if let Some(b) = &v.base_stiffness
+                        && strand_core::BaseStiffness::from_name(b).is_none()
+                    {
+                        bail!(
+                            "{}: unknown base stiffness `{b}`",
+                            at("equivalent.base_stiffness")
+                        );
+                    }
+                }
+                (Some(_), _) => bail!(
+                    "{}: only equivalent-vs-fine runs a variant of the equivalent model",
+                    at("equivalent")
+                ),
+                (None, _) => {}
+            }
         }
         CheckSpec::TensionVsElastica(t) => {
             positive(t.relative, &at("relative"))?;
@@ -464,5 +501,34 @@ mod tests {
         let bad = GOOD.replace("\"why\": \"integrator\"", "\"why\": \" \"");
         let e = Tolerances::parse(&bad, &scenes()).unwrap_err().to_string();
         assert!(e.contains("b.checks.energy-balance.why"), "{e}");
+    }
+
+    #[test]
+    fn a_variant_of_the_equivalent_model_is_checked() {
+        let with =
+            |v: &str| GOOD.replace("\"why\": \"paper\",", &format!("\"why\": \"paper\", {v},"));
+        let t = Tolerances::parse(
+            &with(r#""equivalent": {"elements": 16, "base_stiffness": "costello"}"#),
+            &scenes(),
+        )
+        .unwrap();
+        let CheckSpec::EquivalentVsFine(f) = &t.scenes["a"].checks[1] else {
+            panic!("{:?}", t.scenes["a"].checks);
+        };
+        let v = f.equivalent.as_ref().unwrap();
+        assert_eq!(
+            (v.elements, v.base_stiffness.as_deref()),
+            (Some(16), Some("costello"))
+        );
+        let bad = with(r#""equivalent": {"base_stiffness": "cosine"}"#);
+        let e = Tolerances::parse(&bad, &scenes()).unwrap_err().to_string();
+        assert!(
+            e.contains("a.checks.equivalent-vs-fine.equivalent.base_stiffness")
+                && e.contains("cosine"),
+            "{e}"
+        );
+        let bad = with(r#""equivalent": {"elements": 0}"#);
+        let e = Tolerances::parse(&bad, &scenes()).unwrap_err().to_string();
+        assert!(e.contains("equivalent.elements"), "{e}");
     }
 }
