@@ -36,7 +36,7 @@ enum Task {
     /// with our numbers beside the paper's statements.
     Paper(paper::PaperArgs),
     /// Speed against error of the models on a static and a dynamic scene: table, log-log plot
-    /// with the Pareto front, speed-up at equal error; target/pareto/.
+    /// with the Pareto front, speed-up at equal distance to the reference; target/pareto/.
     Pareto(pareto::ParetoArgs),
     /// The section-3 pendulum in strand and in Exudyn (pip install exudyn), timed side by side
     /// in interleaved runs, with the trajectories checked against each other;

@@ -2,7 +2,8 @@
 //! equivalent model over element counts (and, in dynamics, integrators and time steps), the
 //! traditional model and the fine model over segment counts; error against a converged
 //! reference, median wall time of repeated runs, degrees of freedom; a table, a log-log plot
-//! with the Pareto front, and the speed-up of the equivalent over the fine model at equal error.
+//! with the Pareto front, and the speed-up of the equivalent over the fine model at equal distance
+//! to the reference (for the fine model mostly its modelling difference, not its error).
 //!
 //! References: statics, the elastica shooting solution with the scene's section law
 //! (independent of every discretisation; SPEC 7); dynamics, the equivalent model with

@@ -95,8 +95,10 @@ impl CaseReport {
             .min_by(|a, b| a.fine_error_m.total_cmp(&b.fine_error_m))
         {
             format!(
-                "{} ({analysis}): at the error of the most accurate fine run ({}, {:.2e} m, \
-                 {:.3} s) the equivalent model ({}) is {:.0}x faster.{eq_part}",
+                "{} ({analysis}): at the distance to this reference of the most accurate fine \
+                 run ({}, {:.2e} m, {:.3} s) the equivalent model ({}) is {:.0}x faster; that \
+                 distance is mostly the fine model's modelling difference from the equivalent \
+                 law, so this is not a speed-up at equal error against the fine model.{eq_part}",
                 scene.name,
                 best.fine,
                 best.fine_error_m,
