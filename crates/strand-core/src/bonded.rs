@@ -1,0 +1,370 @@
+//! Bending stiffness of a bonded (all-stick) strand: the wires as rods bonded to the core.
+//!
+//! The plane-section bound K_max = K_min + (m/2) eta E_w A_w R_w^2 (eq. (22a)) takes every
+//! helical wire's axial strain from the rigid rotation of the strand's cross-section. A real
+//! wire is bonded to the core only along its contact line, r_w from its own axis and r_c from
+//! the core's, and its axial force varies along it (as sin(phi)), so the bond carries a
+//! tangential traction that varies as cos(phi). That traction is eccentric on both bodies:
+//!
+//! * it tilts the wire's section (against the wire's shear stiffness kappa G A_w and, as the
+//!   tilt varies along the wire, its bending stiffness) and twists it (the circumferential
+//!   part; with the helix's torsion a twisted wire rolls on its contact line, which again
+//!   shifts its axis against the line), so the wire's axis need not follow the plane section;
+//! * it loads the core with a constant distributed moment about the axis normal to the plane
+//!   of bending, carried by a uniform shear force in the core and a uniform tilt of its
+//!   sections against kappa G A_c, which moves the contact line (at r_c cos(phi) from that
+//!   axis) in phase with the traction.
+//!
+//! Both are compliances in series with the wire's axial stiffness at the wavenumber
+//! `k = dphi/ds = sin(alpha)/R_w` of its phase, so the bonded strand is softer than K_max.
+//!
+//! Model: the linear, periodic solution of the Cosserat (Timoshenko) rod equations of the
+//! helical wires (axial E A, shear kappa G A, torsion G J, bending E I, kappa = 6 (1 + nu) /
+//! (7 + 6 nu)), with the helix's curvature sin^2(alpha)/R_w and torsion sin(alpha) cos(alpha)/R_w
+//! in the wire's frame (tangent t, outward normal e_r to the core, b = t x e_r), bonded to a
+//! Timoshenko core with rigid sections. The displacement and rotation of each wire are the
+//! rigid rotation of the strand's section (plane sections, bending curvature `kappa` about
+//! z) plus a perturbation; the core's perturbation is a uniform rotation of its sections
+//! (shear tilt) about the two transverse axes. The strains of a perturbation (v, theta) are
+//! `Gamma = v' + t x theta`, `K = theta'`, with `(.)' = d/ds` of the frame components plus
+//! `omega x (.)`, `omega = -tau t - kappa_w b` the frame's Darboux vector. Along a helix those
+//! coefficients are constant and the plane-section loading is a first harmonic of the phase,
+//! so the periodic solution is exactly a first harmonic of the phase in the frame components
+//! (cos phi, sin phi for six fields), and for `m >= 3` evenly spaced wires the core sees only
+//! constants. Minimising the energy per unit strand length (wires' energy per unit wire
+//! length times m / cos(alpha), plus the core's shear energy) over these 14 amplitudes, with
+//! the contact line bonded exactly or by springs, gives the stiffness `2 U / kappa^2`.
+//!
+//! Checks (tests): with the wires free to slide on the core the model gives Costello's
+//! frictionless stiffness E_c I_c + m E_w I_w cos(alpha) 2 / (2 + nu sin^2(alpha)); with the
+//! bond on the wires' axes and a shear-rigid core it gives that base plus the plane-section
+//! stick stiffness exactly. The fine model (`strand bend`) converges to it: see
+//! `cargo xtask bonded`.
+
+use std::f64::consts::PI;
+
+use crate::geometry::Strand;
+
+/// Idealisations of the bonded-strand model, to separate its compliances (all `1.0` and
+/// `None`: the physical strand with a rigid bond on the touching surfaces).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BondedOptions {
+    /// Factor on the helical wires' shear stiffness kappa G A_w (-).
+    pub wire_shear: f64,
+    /// Factor on the helical wires' torsion stiffness G J_w (-).
+    pub wire_torsion: f64,
+    /// Factor on the helical wires' bending stiffness E I_w (-).
+    pub wire_bending: f64,
+    /// Factor on the core's shear stiffness kappa G A_c (-); infinite: the core's sections
+    /// do not tilt.
+    pub core_shear: f64,
+    /// Tangential stiffness of the bond per unit wire length (N/m^2), along the wire and
+    /// across it; `None`: rigid. Zero: the wires slide freely on the core.
+    pub tangential_stiffness: Option<f64>,
+    /// Normal stiffness of the contact per unit wire length (N/m^2); `None`: rigid.
+    pub normal_stiffness: Option<f64>,
+    /// Distance of the bond line from the core's axis (m); `None`: r_c, the touching
+    /// surfaces. `Some(R_w)` puts it on the wires' axes (no eccentricity on the wires).
+    pub contact_radius: Option<f64>,
+}
+
+impl Default for BondedOptions {
+    fn default() -> Self {
+        Self {
+            wire_shear: 1.0,
+            wire_torsion: 1.0,
+            wire_bending: 1.0,
+            core_shear: 1.0,
+            tangential_stiffness: None,
+            normal_stiffness: None,
+            contact_radius: None,
+        }
+    }
+}
+
+/// Bending stiffnesses of a strand from the rod model (N m^2).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BondedStiffness {
+    /// Every wire bonded to the core: the initial (all-stick) stiffness.
+    pub bonded: f64,
+    /// Every wire free to slide along and around the core (normal contact kept): the
+    /// frictionless stiffness (Costello's).
+    pub free: f64,
+    /// The plane-section stick stiffness sum_i eta E_w A_w (R_w sin phi_i)^2 =
+    /// (m/2) eta E_w A_w R_w^2 (eq. (22a)).
+    pub plane_section_stick: f64,
+}
+
+impl BondedStiffness {
+    /// Share of the plane-section stick stiffness that the bond delivers,
+    /// (bonded - free) / plane_section_stick (-): the factor on each wire's K_stick.
+    pub fn stick_factor(&self) -> f64 {
+        (self.bonded - self.free) / self.plane_section_stick
+    }
+}
+
+/// Bonded and free bending stiffness of `strand` under `options`; `None` for a strand
+/// without a helical layer, and for one or two wires unless the core's shear is rigid
+/// (`core_shear` infinite): their tractions then load the core with a tilt that varies
+/// along the strand (the second harmonic of the phase), which this model leaves out.
+pub fn bonded_stiffness(strand: &Strand, options: &BondedOptions) -> Option<BondedStiffness> {
+    let layer = strand.layer()?;
+    if layer.wires() < 3 && options.core_shear.is_finite() {
+        return None;
+    }
+    let rod = Rods::new(strand, options);
+    let free = rod.stiffness(Some(0.0), options.normal_stiffness);
+    let bonded = rod.stiffness(options.tangential_stiffness, options.normal_stiffness);
+    Some(BondedStiffness {
+        bonded,
+        free,
+        plane_section_stick: 0.5
+            * layer.wires() as f64
+            * layer.wire_axial_stiffness()
+            * layer.radius.powi(2),
+    })
+}
+
+/// The rod model's constants (SI).
+struct Rods {
+    wires: f64,
+    alpha: f64,
+    helix_radius: f64,
+    contact_radius: f64,
+    /// Phase wavenumber along the wire sin(alpha)/R_w (1/m).
+    k: f64,
+    /// Helix curvature and torsion (1/m).
+    curvature: f64,
+    torsion: f64,
+    /// E A, kappa G A, kappa G A, G J, E I, E I of a helical wire.
+    wire: [f64; 6],
+    core_shear: f64,
+    core_bending: f64,
+}
+
+/// Unknown amplitudes: (cos, sin) of v_t, v_r, v_b, theta_t, theta_r, theta_b, then the
+/// core's section rotations about y and z.
+const N: usize = 14;
+/// Quadrature stations over the phase: exact for the products of first harmonics.
+const STATIONS: usize = 8;
+
+/// A linear form in the unknowns plus a constant per unit curvature.
+#[derive(Clone, Copy)]
+struct Form {
+    q: [f64; N],
+    c: f64,
+}
+
+impl Form {
+    fn zero() -> Self {
+        Self {
+            q: [0.0; N],
+            c: 0.0,
+        }
+    }
+
+    fn add(mut self, f: f64, o: &Form) -> Self {
+        for (a, b) in self.q.iter_mut().zip(&o.q) {
+            *a += f * b;
+        }
+        self.c += f * o.c;
+        self
+    }
+}
+
+impl Rods {
+    fn new(strand: &Strand, o: &BondedOptions) -> Self {
+        let layer = strand.layer().expect("a helical layer");
+        let w = &layer.spec.wire;
+        let c = strand.core();
+        let alpha = layer.lay_angle();
+        let r = layer.radius;
+        let ks = |nu: f64| 6.0 * (1.0 + nu) / (7.0 + 6.0 * nu);
+        let (e, g, nu) = (
+            w.material.youngs_modulus,
+            w.material.shear_modulus(),
+            w.material.poisson_ratio,
+        );
+        let k = alpha.sin() / r;
+        Self {
+            wires: layer.wires() as f64,
+            alpha,
+            helix_radius: r,
+            contact_radius: o.contact_radius.unwrap_or(c.radius()),
+            k,
+            curvature: k * alpha.sin(),
+            torsion: k * alpha.cos(),
+            wire: [
+                e * w.area(),
+                o.wire_shear * ks(nu) * g * w.area(),
+                o.wire_shear * ks(nu) * g * w.area(),
+                o.wire_torsion * g * w.polar_inertia(),
+                o.wire_bending * e * w.inertia(),
+                o.wire_bending * e * w.inertia(),
+            ],
+            core_shear: o.core_shear
+                * ks(c.material.poisson_ratio)
+                * c.material.shear_modulus()
+                * c.area(),
+            core_bending: c.material.youngs_modulus * c.inertia(),
+        }
+    }
+
+    /// Strains (axial, two shears, twist, two bendings) and bond gaps (along t, e_r, b)
+    /// at phase `phi` per unit curvature, as linear forms in the unknowns.
+    fn fields(&self, phi: f64) -> ([Form; 6], [Form; 3]) {
+        let (c, s) = (phi.cos(), phi.sin());
+        let (ca, sa) = (self.alpha.cos(), self.alpha.sin());
+        // Value and s-derivative of field f (0..6).
+        let val = |f: usize| {
+            let mut x = Form::zero();
+            x.q[2 * f] = c;
+            x.q[2 * f + 1] = s;
+            x
+        };
+        let der = |f: usize| {
+            let mut x = Form::zero();
+            x.q[2 * f] = -self.k * s;
+            x.q[2 * f + 1] = self.k * c;
+            x
+        };
+        let base = |v: f64| Form { q: [0.0; N], c: v };
+        let (kw, tw) = (self.curvature, self.torsion);
+        let r = self.helix_radius;
+        let (vt, vr, vb, tt, tr, tb) = (0, 1, 2, 3, 4, 5);
+        // Gamma = v' + t x theta and K = theta' of the perturbation, plus the rigid
+        // rotation of the strand's section (Gamma0 = -kappa cos(alpha) y x_hat,
+        // K0 = kappa cos(alpha) z_hat, y = R_w sin(phi)).
+        let strains = [
+            der(vt).add(kw, &val(vr)).add(1.0, &base(-r * ca * ca * s)),
+            der(vr)
+                .add(-kw, &val(vt))
+                .add(tw, &val(vb))
+                .add(-1.0, &val(tb)),
+            der(vb)
+                .add(-tw, &val(vr))
+                .add(1.0, &val(tr))
+                .add(1.0, &base(-r * ca * sa * s)),
+            der(tt).add(kw, &val(tr)).add(1.0, &base(-ca * sa * s)),
+            der(tr)
+                .add(-kw, &val(tt))
+                .add(tw, &val(tb))
+                .add(1.0, &base(ca * c)),
+            der(tb).add(-tw, &val(tr)).add(1.0, &base(ca * ca * s)),
+        ];
+        // The bond line, rho from the core's axis: the wire's point R_w - rho inward of its
+        // axis against the core's point, moved axially by the core's tilt (theta_y z -
+        // theta_z y at (y, z) = rho (sin phi, cos phi)).
+        let arm = self.helix_radius - self.contact_radius;
+        let mut tilt = Form::zero();
+        tilt.q[12] = self.contact_radius * c;
+        tilt.q[13] = -self.contact_radius * s;
+        let gaps = [
+            val(vt).add(arm, &val(tb)).add(-ca, &tilt),
+            val(vr),
+            val(vb).add(-arm, &val(tt)).add(-sa, &tilt),
+        ];
+        (strains, gaps)
+    }
+
+    /// Bending stiffness (N m^2) with the bond's tangential and normal stiffness per unit
+    /// wire length (`None`: rigid).
+    fn stiffness(&self, tangential: Option<f64>, normal: Option<f64>) -> f64 {
+        // Energy per unit strand length at unit curvature: 1/2 q^T A q + b^T q + c0.
+        let mut a = [[0.0; N]; N];
+        let mut b = [0.0; N];
+        let mut c0 = 0.0;
+        let weight = self.wires / self.alpha.cos() / STATIONS as f64;
+        let springs = [tangential, normal, tangential];
+        // Rigid bonds: the cos and sin amplitudes of each rigid gap vanish.
+        let mut constraints: Vec<[f64; N]> = Vec::new();
+        let mut amplitudes = [[[0.0; N]; 2]; 3];
+        for j in 0..STATIONS {
+            let phi = 2.0 * PI * (j as f64 + 0.5) / STATIONS as f64;
+            let (strains, gaps) = self.fields(phi);
+            let mut add = |f: &Form, stiffness: f64| {
+                for (r, row) in a.iter_mut().enumerate() {
+                    for (c, v) in row.iter_mut().enumerate() {
+                        *v += weight * stiffness * f.q[r] * f.q[c];
+                    }
+                    b[r] += weight * stiffness * f.q[r] * f.c;
+                }
+                c0 += 0.5 * weight * stiffness * f.c * f.c;
+            };
+            for (f, &k) in strains.iter().zip(&self.wire) {
+                add(f, k);
+            }
+            for (g, (spring, amp)) in gaps.iter().zip(springs.iter().zip(&mut amplitudes)) {
+                match spring {
+                    Some(k) => add(g, *k),
+                    None => {
+                        for (h, trig) in [phi.cos(), phi.sin()].into_iter().enumerate() {
+                            for (x, y) in amp[h].iter_mut().zip(&g.q) {
+                                *x += trig * y;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        for (g, spring) in amplitudes.iter().zip(&springs) {
+            if spring.is_none() {
+                constraints.extend(g.iter().copied());
+            }
+        }
+        if self.core_shear.is_finite() {
+            a[12][12] += self.core_shear;
+            a[13][13] += self.core_shear;
+        } else {
+            for i in [12, 13] {
+                let mut row = [0.0; N];
+                row[i] = 1.0;
+                constraints.push(row);
+            }
+        }
+        // Stationarity with the constraints' multipliers: [A G^T; G 0] [q; l] = [-b; 0].
+        let n = N + constraints.len();
+        let mut m = vec![vec![0.0; n + 1]; n];
+        for r in 0..N {
+            m[r][..N].copy_from_slice(&a[r]);
+            m[r][n] = -b[r];
+        }
+        for (i, g) in constraints.iter().enumerate() {
+            for c in 0..N {
+                m[N + i][c] = g[c];
+                m[c][N + i] = g[c];
+            }
+        }
+        let x = solve(m);
+        // At the minimum q^T A q = -b^T q, so U = c0 + b^T q / 2.
+        let u = c0 + 0.5 * b.iter().zip(&x).map(|(b, q)| b * q).sum::<f64>();
+        2.0 * u + self.core_bending
+    }
+}
+
+/// Solves the augmented system `m = [M | r]` by Gaussian elimination with partial pivoting.
+fn solve(mut m: Vec<Vec<f64>>) -> Vec<f64> {
+    let n = m.len();
+    for c in 0..n {
+        let p = (c..n)
+            .max_by(|&i, &j| m[i][c].abs().total_cmp(&m[j][c].abs()))
+            .expect("a row");
+        m.swap(c, p);
+        let pivot = m[c][c];
+        assert!(pivot != 0.0, "singular bonded-strand system");
+        for r in c + 1..n {
+            let f = m[r][c] / pivot;
+            if f != 0.0 {
+                for k in c..=n {
+                    m[r][k] -= f * m[c][k];
+                }
+            }
+        }
+    }
+    let mut x = vec![0.0; n];
+    for r in (0..n).rev() {
+        let s: f64 = (r + 1..n).map(|k| m[r][k] * x[k]).sum();
+        x[r] = (m[r][n] - s) / m[r][r];
+    }
+    x
+}

@@ -1,0 +1,180 @@
+//! The bonded-strand rod model (`strand_core::bonded`) against independent closed forms: with
+//! the wires free to slide it is Costello's frictionless stiffness; with the bond on the
+//! wires' axes and a shear-rigid core it is that plus the plane-section stick stiffness; a
+//! nearly straight layer delivers the whole plane-section stiffness.
+
+use proptest::prelude::*;
+use strand_core::{
+    BondedOptions, LayDirection, LayerSpec, Material, Strand, StrandSpec, WireSpec,
+    bonded_stiffness,
+};
+
+/// A 1+m strand (m >= 3) with its own core and wire materials.
+#[allow(clippy::too_many_arguments)]
+fn strand(
+    dc: f64,
+    ec: f64,
+    nuc: f64,
+    m: usize,
+    dw: f64,
+    ew: f64,
+    nuw: f64,
+    alpha_deg: f64,
+) -> Option<Strand> {
+    let mat = |e: f64, nu: f64| Material {
+        youngs_modulus: e,
+        poisson_ratio: nu,
+        density: 7800.0,
+    };
+    Strand::new(StrandSpec {
+        length: 0.3,
+        core: WireSpec {
+            diameter: dc,
+            material: mat(ec, nuc),
+        },
+        layers: vec![LayerSpec {
+            wires: m,
+            wire: WireSpec {
+                diameter: dw,
+                material: mat(ew, nuw),
+            },
+            lay_angle: alpha_deg.to_radians(),
+            phase: 0.0,
+            direction: LayDirection::Right,
+        }],
+        friction: 0.3,
+    })
+    .ok()
+}
+
+fn random_strand() -> impl Strategy<Value = Strand> {
+    (
+        (0.5e-3..5e-3f64, 7.0..11.5f64, 0.0..0.5f64, 3usize..=9),
+        (0.2..1.5f64, 0.3..3.0f64, 0.0..0.5f64, 2.0..40.0f64),
+    )
+        .prop_filter_map(
+            "overlapping layer",
+            |((dc, loge, nuc, m), (ratio, eratio, nuw, alpha))| {
+                let e = 10f64.powf(loge);
+                strand(dc, e, nuc, m, dc * ratio, e * eratio, nuw, alpha)
+            },
+        )
+}
+
+/// Costello's frictionless bending stiffness E_c I_c + m E_w I_w cos(alpha) 2 / (2 + nu_w
+/// sin^2(alpha)) (thin rods with the helix's torsion; independent of the rod model's
+/// Fourier solution).
+fn costello(s: &Strand) -> f64 {
+    let l = s.layer().unwrap();
+    let w = &l.spec.wire;
+    let (a, nu) = (l.lay_angle(), w.material.poisson_ratio);
+    s.core().material.youngs_modulus * s.core().inertia()
+        + l.wires() as f64 * w.material.youngs_modulus * w.inertia() * a.cos() * 2.0
+            / (2.0 + nu * a.sin().powi(2))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// Wires free to slide on the core: Costello's stiffness, to round-off.
+    #[test]
+    fn free_wires_give_costellos_stiffness(s in random_strand()) {
+        let b = bonded_stiffness(&s, &BondedOptions::default()).unwrap();
+        let c = costello(&s);
+        prop_assert!((b.free / c - 1.0).abs() < 1e-9, "free {} Costello {}", b.free, c);
+    }
+
+    /// Bond on the wires' axes, shear-rigid core, rigid contacts: no eccentric traction on
+    /// the wires and no tilt of the core, so the wires' axes follow the plane section and the
+    /// bond adds the plane-section stick stiffness (m/2) eta E_w A_w R_w^2. Exactly so for
+    /// wires without bending and torsion stiffness (their sections then turn freely); with
+    /// them, the wires' bending energy differs from the free (sliding) wires' by a few per
+    /// cent of itself (their axes are held, not free to slide).
+    #[test]
+    fn bond_on_the_axes_of_rigid_sections_gives_the_plane_section_stiffness(
+        s in random_strand(),
+    ) {
+        let r = s.layer().unwrap().radius;
+        let on_axes = BondedOptions {
+            contact_radius: Some(r),
+            core_shear: 1e12,
+            ..Default::default()
+        };
+        let b = bonded_stiffness(&s, &on_axes).unwrap();
+        let core = s.core().material.youngs_modulus * s.core().inertia();
+        let wires = b.free - core;
+        let dev = (b.bonded - b.free - b.plane_section_stick) / wires;
+        prop_assert!(dev.abs() < 0.1, "bonded {} free {} stick {}", b.bonded, b.free, b.plane_section_stick);
+        let limp = BondedOptions {
+            wire_bending: 1e-9,
+            wire_torsion: 1e-9,
+            ..on_axes
+        };
+        let b = bonded_stiffness(&s, &limp).unwrap();
+        let expected = core + b.plane_section_stick;
+        prop_assert!(
+            (b.bonded / expected - 1.0).abs() < 1e-6,
+            "bonded {} expected {}", b.bonded, expected
+        );
+    }
+
+    /// The physical bond is softer than the plane section (the eccentric traction only
+    /// relaxes the wires), and stiffening the wires' and the core's shear, or the contacts,
+    /// stiffens it.
+    #[test]
+    fn compliances_soften_the_bond(s in random_strand()) {
+        let base = bonded_stiffness(&s, &BondedOptions::default()).unwrap();
+        prop_assert!(base.stick_factor() > 0.0 && base.stick_factor() < 1.0);
+        for o in [
+            BondedOptions { core_shear: 10.0, ..Default::default() },
+            BondedOptions { wire_shear: 10.0, ..Default::default() },
+        ] {
+            prop_assert!(bonded_stiffness(&s, &o).unwrap().bonded > base.bonded);
+        }
+        let k = base.plane_section_stick / s.layer().unwrap().radius.powi(2);
+        let springs = BondedOptions {
+            tangential_stiffness: Some(k),
+            normal_stiffness: Some(k),
+            ..Default::default()
+        };
+        prop_assert!(bonded_stiffness(&s, &springs).unwrap().bonded < base.bonded);
+    }
+}
+
+/// A nearly straight layer (lay angle 0.5 deg) carries no varying wire force: the bond
+/// delivers the plane-section stiffness to within (k r)^2, k = sin(alpha) / R_w.
+#[test]
+fn straight_wires_bond_fully() {
+    let s = strand(3e-3, 2e8, 0.3, 6, 2e-3, 2e8, 0.3, 0.5).unwrap();
+    let b = bonded_stiffness(&s, &BondedOptions::default()).unwrap();
+    assert!(
+        (b.stick_factor() - 1.0).abs() < 1e-3,
+        "{}",
+        b.stick_factor()
+    );
+}
+
+/// Fewer than three wires: the core also sees the second harmonic, which the model leaves
+/// out, so it declines unless the core's sections cannot tilt; a rigid core's tilt is the
+/// same for six wires whether imposed as a constraint or as a very stiff spring.
+#[test]
+fn two_wires_need_a_shear_rigid_core() {
+    let s = strand(3e-3, 2e8, 0.3, 2, 2e-3, 2e8, 0.3, 20.0).unwrap();
+    assert!(bonded_stiffness(&s, &BondedOptions::default()).is_none());
+    let rigid = BondedOptions {
+        core_shear: f64::INFINITY,
+        ..Default::default()
+    };
+    let b = bonded_stiffness(&s, &rigid).unwrap();
+    assert!(b.stick_factor() > 0.0 && b.stick_factor() < 1.0);
+    let s = strand(3e-3, 2e8, 0.3, 6, 2e-3, 2e8, 0.3, 20.0).unwrap();
+    let stiff = BondedOptions {
+        core_shear: 1e12,
+        ..Default::default()
+    };
+    let (a, b) = (
+        bonded_stiffness(&s, &rigid).unwrap().bonded,
+        bonded_stiffness(&s, &stiff).unwrap().bonded,
+    );
+    assert!((a / b - 1.0).abs() < 1e-9, "{a} {b}");
+}
