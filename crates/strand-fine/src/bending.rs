@@ -18,10 +18,10 @@
 //! tension from the clamp reaction.
 
 use nalgebra::{UnitQuaternion, Vector3};
-use strand_core::{Strand, StrandSpec};
+use strand_core::{BondedOptions, Strand, StrandSpec};
 
 use crate::contact::{ContactOptions, ContactState};
-use crate::model::{Discretisation, FineModel, ModelState, Support};
+use crate::model::{Discretisation, FineModel, ModelState, SpringScale, Support};
 use crate::segment::Pose;
 use crate::statics::{StaticError, StaticOptions, solve_static};
 
@@ -44,6 +44,10 @@ pub struct BendingTest {
     pub statics: StaticOptions,
     /// Times a failed load step's curvature increment may be halved.
     pub max_halvings: usize,
+    /// Factors on the core's joint springs (all 1: the physical core).
+    pub core_springs: SpringScale,
+    /// Factors on the helical wires' joint springs (all 1: the physical wires).
+    pub wire_springs: SpringScale,
 }
 
 impl BendingTest {
@@ -182,6 +186,46 @@ impl ArcMap {
 }
 
 impl BendingTest {
+    /// The contacts the test builds on `strand`: [`BendingTest::contact`] with the test's
+    /// friction and, unless set, the reference tension of the wires under `tension`,
+    /// E_w A_w cos^2(alpha) T / EA_eq (N).
+    pub fn contact_options(&self, strand: &Strand) -> ContactOptions {
+        let reference = strand.layer().map(|layer| {
+            let w = &layer.spec.wire;
+            let eps = self.tension / strand.axial_stiffness();
+            w.material.youngs_modulus * w.area() * layer.lay_angle().cos().powi(2) * eps
+        });
+        ContactOptions {
+            reference_tension: self.contact.reference_tension.or(reference),
+            friction: Some(self.friction),
+            ..self.contact
+        }
+    }
+
+    /// The idealisations of the bonded-strand rod model ([`strand_core::bonded`]) that match
+    /// this test's springs and contacts on `strand`: the shear, torsion and bending factors
+    /// of the wires, the core's shear factor, the contacts' stiffness per unit length and
+    /// radius. `None` when a factor the rod model does not carry differs from 1 (the axial
+    /// factors, the core's bending and torsion).
+    pub fn rod_options(&self, strand: &Strand) -> Option<BondedOptions> {
+        let layer = strand.layer()?;
+        let (c, w) = (&self.core_springs, &self.wire_springs);
+        if [c.axial, c.bending, c.torsion, w.axial] != [1.0; 4] {
+            return None;
+        }
+        let contact = self.contact_options(strand);
+        let (normal, tangential) = contact.stiffness_per_length(layer);
+        Some(BondedOptions {
+            wire_shear: w.shear,
+            wire_torsion: w.torsion,
+            wire_bending: w.bending,
+            core_shear: c.shear,
+            tangential_stiffness: Some(tangential),
+            normal_stiffness: Some(normal),
+            contact_radius: contact.contact_radius,
+        })
+    }
+
     /// Runs the test on `strand` (its length is replaced by `pitches` pitches) and returns
     /// the measured curve: the tension step first (curvature zero), then one point per
     /// curvature.
@@ -223,21 +267,10 @@ impl BendingTest {
             Support::Clamped,
             Support::Clamped,
         );
+        model.scale_springs(&self.core_springs, &self.wire_springs);
         let ea = strand.axial_stiffness();
         let eps = self.tension / ea;
-        let w = &layer.spec.wire;
-        let wire_ea = w.material.youngs_modulus * w.area();
-        let alpha = layer.lay_angle();
-        let contact = ContactOptions {
-            reference_tension: Some(
-                self.contact
-                    .reference_tension
-                    .unwrap_or(wire_ea * alpha.cos().powi(2) * eps),
-            ),
-            friction: Some(self.friction),
-            ..self.contact
-        };
-        model.add_contacts(&strand, &contact);
+        model.add_contacts(&strand, &self.contact_options(&strand));
         let core = strand.core();
         let shares: Vec<f64> = std::iter::once(core.material.youngs_modulus * core.area() / ea)
             .chain((0..layer.wires()).map(|_| layer.wire_axial_stiffness() / ea))

@@ -21,6 +21,7 @@
 //!   contact point, so the history follows the contact as it moves along the core.
 
 use nalgebra::Vector3;
+use strand_core::HelixLayer;
 
 use crate::segment::{Placement, Segment};
 
@@ -61,6 +62,11 @@ pub struct ContactOptions {
     pub friction: Option<f64>,
     /// Contact points per helical segment, 1 (centre) or 2 (at +-l/4); default 2.
     pub points_per_segment: usize,
+    /// Distance of the tangential contact point from the core's axis (m); `None`: the
+    /// touching surfaces, r_c. The friction traction then acts r_w from the wire's axis and
+    /// tilts and twists the wire's section. A study option: `Some(R_w)` puts it on the
+    /// wire's axis (no eccentricity on the wire, arm R_w on the core).
+    pub contact_radius: Option<f64>,
 }
 
 impl Default for ContactOptions {
@@ -72,7 +78,28 @@ impl Default for ContactOptions {
             stick_loss: 0.05,
             friction: None,
             points_per_segment: 2,
+            contact_radius: None,
         }
+    }
+}
+
+impl ContactOptions {
+    /// Normal and tangential stiffness of the contacts per unit length of a helical wire of
+    /// `layer` (N/m^2): `T_w sin^2(alpha) / (R_w penetration d_w)` and
+    /// `E_w A_w q^2 / stick_loss` (see [`ContactOptions`]).
+    pub fn stiffness_per_length(&self, layer: &HelixLayer) -> (f64, f64) {
+        let wire = &layer.spec.wire;
+        let (ew, aw) = (wire.material.youngs_modulus, wire.area());
+        let alpha = layer.lay_angle();
+        let tension = self
+            .reference_tension
+            .unwrap_or(ew * aw * alpha.cos().powi(2) * self.reference_strain);
+        let pressure = tension * alpha.sin().powi(2) / layer.radius;
+        let q = alpha.sin() / layer.radius;
+        (
+            pressure / (self.penetration * wire.diameter),
+            ew * aw * q * q / self.stick_loss,
+        )
     }
 }
 

@@ -54,8 +54,8 @@ pub use contact::{
 pub use dynamics::{Integrator, stable_time_step};
 pub use joint::{JointLoad, JointSpring, JointStiffness};
 pub use model::{
-    Anchor, Discretisation, End, Energies, FineModel, ModelState, Support, Tie, Wire, WireLoads,
-    WireState,
+    Anchor, Discretisation, End, Energies, FineModel, ModelState, SpringScale, Support, Tie, Wire,
+    WireLoads, WireState,
 };
 pub use segment::{Pose, Segment};
 pub use settle::{

@@ -17,7 +17,7 @@ use strand_core::Strand;
 
 use crate::chain::{Chain, WireSection};
 use crate::contact::{self, ContactHistory, ContactLaw, ContactLoad, ContactOptions, ContactPoint};
-use crate::joint::JointSpring;
+use crate::joint::{JointSpring, JointStiffness};
 use crate::segment::{Frame, Placement, Pose};
 
 /// Boundary condition at one end of the strand.
@@ -158,6 +158,48 @@ pub struct Tie {
     pub joint: JointSpring,
 }
 
+/// Factors on the joint springs of a wire's section (all 1 for the physical wire). Studies
+/// use them to remove one compliance that a closed form ignores, e.g. the shear of the wires
+/// (`shear = 100`) when checking the plane-section stiffness; every factor must be positive.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpringScale {
+    /// Factor on the axial springs E A / l (-).
+    pub axial: f64,
+    /// Factor on the shear springs kappa G A / l (-).
+    pub shear: f64,
+    /// Factor on the torsion springs G J / l (-).
+    pub torsion: f64,
+    /// Factor on the bending springs E I / l (-).
+    pub bending: f64,
+}
+
+impl Default for SpringScale {
+    fn default() -> Self {
+        Self {
+            axial: 1.0,
+            shear: 1.0,
+            torsion: 1.0,
+            bending: 1.0,
+        }
+    }
+}
+
+impl SpringScale {
+    /// The factors applied to `k`.
+    pub fn apply(&self, k: &JointStiffness) -> JointStiffness {
+        JointStiffness {
+            translational: k
+                .translational
+                .component_mul(&Vector3::new(self.axial, self.shear, self.shear)),
+            rotational: k.rotational.component_mul(&Vector3::new(
+                self.torsion,
+                self.bending,
+                self.bending,
+            )),
+        }
+    }
+}
+
 /// How to discretise a strand.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Discretisation {
@@ -249,17 +291,11 @@ impl FineModel {
     pub fn add_contacts(&mut self, strand: &Strand, options: &ContactOptions) {
         let Some(layer) = strand.layer() else { return };
         let wire = &layer.spec.wire;
-        let (ew, aw) = (wire.material.youngs_modulus, wire.area());
-        let alpha = layer.lay_angle();
-        let tension = options
-            .reference_tension
-            .unwrap_or(ew * aw * alpha.cos().powi(2) * options.reference_strain);
-        let pressure = tension * alpha.sin().powi(2) / layer.radius;
-        let q = alpha.sin() / layer.radius;
-        let shear_per_length = ew * aw * q * q / options.stick_loss;
+        let (normal_per_length, shear_per_length) = options.stiffness_per_length(layer);
         let friction = options.friction.unwrap_or(strand.friction());
         let n_pts = options.points_per_segment.clamp(1, 2);
         let (rc, rw) = (strand.core().radius(), wire.radius());
+        let core_share = options.contact_radius.unwrap_or(rc) / (rc + rw);
         let (core_wire, helical) = self.wires.split_at_mut(1);
         let core = &core_wire[0].chain;
         let core_frames: Vec<Frame> = core.rest.iter().map(Frame::of).collect();
@@ -269,7 +305,7 @@ impl FineModel {
             for (k, seg) in c.segments.iter().enumerate() {
                 let share = seg.length / n_pts as f64;
                 let law = ContactLaw {
-                    normal_stiffness: pressure * share / (options.penetration * wire.diameter),
+                    normal_stiffness: normal_per_length * share,
                     tangential_stiffness: shear_per_length * share,
                     friction,
                 };
@@ -290,7 +326,7 @@ impl FineModel {
                         segment: k,
                         offset,
                         rest_distance,
-                        core_share: rc / (rc + rw),
+                        core_share,
                         law,
                     });
                 }
@@ -349,6 +385,23 @@ impl FineModel {
             let a = (s - x[k - 1]) / (x[k] - x[k - 1]);
             core.external[k - 1] += force * (1.0 - a);
             core.external[k] += force * a;
+        }
+    }
+
+    /// Scales the springs of the core's joints and supports by `core` and those of every
+    /// helical wire (joints, supports and ties to the core) by `helical`.
+    pub fn scale_springs(&mut self, core: &SpringScale, helical: &SpringScale) {
+        for (i, w) in self.wires.iter_mut().enumerate() {
+            let s = if i == 0 { core } else { helical };
+            for j in &mut w.chain.joints {
+                j.stiffness = s.apply(&j.stiffness);
+            }
+            for a in &mut w.anchors {
+                a.joint.stiffness = s.apply(&a.joint.stiffness);
+            }
+        }
+        for t in &mut self.ties {
+            t.joint.stiffness = helical.apply(&t.joint.stiffness);
         }
     }
 

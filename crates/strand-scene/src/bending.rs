@@ -142,6 +142,8 @@ pub fn run_bending(
             ..Default::default()
         },
         max_halvings: 6,
+        core_springs: Default::default(),
+        wire_springs: Default::default(),
     };
     let last = *curvatures.last().expect("at least one curvature");
     let start = Instant::now();
