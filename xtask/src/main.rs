@@ -6,6 +6,7 @@ use anyhow::{Context, bail};
 use clap::{Parser, Subcommand};
 
 mod bench_peers;
+mod bonded;
 mod hard;
 mod paper;
 mod pareto;
@@ -35,6 +36,11 @@ enum Task {
     /// Reproduces the paper's Figs. 7-15 (PNG, SVG) and writes target/paper/report.{md,json}
     /// with our numbers beside the paper's statements.
     Paper(paper::PaperArgs),
+    /// The bonded (all-stick) stiffness study: the fine model's virtual bending test with
+    /// each compliance that K_max ignores removed in turn, refined in the segment length,
+    /// against the rod model of the bonded strand; target/bonded/. Fails on any failed
+    /// criterion (validation/bonded.json).
+    Bonded(bonded::BondedArgs),
     /// Speed against error of the models on a static and a dynamic scene: table, log-log plot
     /// with the Pareto front, speed-up at equal distance to the reference; target/pareto/.
     Pareto(pareto::ParetoArgs),
@@ -58,6 +64,7 @@ fn main() -> anyhow::Result<()> {
         Task::Pareto(args) => pareto::run(&args),
         Task::BenchPeers(args) => bench_peers::run(&args),
         Task::Stiffness(args) => stiffness_and_exit(&args),
+        Task::Bonded(args) => bonded_and_exit(&args),
     }
 }
 
@@ -86,6 +93,22 @@ fn hard_and_exit(args: &hard::HardArgs) -> anyhow::Result<()> {
             .map(|r| format!("{} {}", r.scene, r.check))
             .collect();
         eprintln!("hard cases failed: {}", names.join("; "));
+        std::process::exit(1);
+    }
+    Ok(())
+}
+
+/// Runs the bonded-stiffness study, prints the table and exits with status 1 when a criterion
+/// failed.
+fn bonded_and_exit(args: &bonded::BondedArgs) -> anyhow::Result<()> {
+    let report = bonded::run(args)?;
+    print!("{}", report.table());
+    if report.failed() {
+        let names: Vec<String> = report
+            .failures()
+            .map(|r| format!("{} {} {}", r.scene, r.check, r.metric))
+            .collect();
+        eprintln!("bonded study failed: {}", names.join("; "));
         std::process::exit(1);
     }
     Ok(())
