@@ -80,6 +80,8 @@ impl BendingTest {
                 ..Default::default()
             },
             max_halvings: 6,
+            core_springs: SpringScale::default(),
+            wire_springs: SpringScale::default(),
         }
     }
 }

@@ -407,7 +407,7 @@ fn study(sname: &str, strand: &Strand, load: &Loading, v: &Variant) -> anyhow::R
         clamp_ratio,
         rod: if v.compare { rod_pen.bonded } else { f64::NAN },
         rod_rigid: rod_rigid.bonded,
-        k_max: strand.max_bending_stiffness(),
+        k_max: strand.max_bending_stiffness(strand_core::BaseStiffness::Costello),
         wall_time: t.elapsed().as_secs_f64(),
     })
 }
