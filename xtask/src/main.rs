@@ -39,7 +39,7 @@ enum Task {
     /// The bonded (all-stick) stiffness study: the fine model's virtual bending test with
     /// each compliance that K_max ignores removed in turn, refined in the segment length,
     /// against the rod model of the bonded strand; target/bonded/. Fails on any failed
-    /// criterion (validation/bonded.json).
+    /// criterion (validation/bonded/criteria.json).
     Bonded(bonded::BondedArgs),
     /// Speed against error of the models on a static and a dynamic scene: table, log-log plot
     /// with the Pareto front, speed-up at equal distance to the reference; target/pareto/.

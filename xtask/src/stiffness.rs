@@ -179,6 +179,7 @@ fn tip(
     if let Some(b) = base {
         file.section = Some(SectionFile {
             base_stiffness: Some(b.name().into()),
+            ..Default::default()
         });
     }
     let s = Scene::from_file(file).map_err(|e| anyhow::anyhow!("{}: {e}", scene.name))?;

@@ -163,8 +163,8 @@ fn bend(path: &std::path::Path, opts: strand_scene::BendingOptions) -> anyhow::R
         s.scene, s.tension, s.strain, s.pitches, s.segments_per_pitch, s.wall_time
     );
     println!(
-        "K_min = {:.4e} N m^2, K_max = {:.4e} N m^2; law `{}`",
-        s.k_min, s.k_max, s.law
+        "K_min = {:.4e} N m^2, K_max = {:.4e} N m^2 (stick stiffness `{}`); law `{}`",
+        s.k_min, s.k_max, s.stick_stiffness, s.law
     );
     println!(
         "{:>12} {:>12} {:>12} {:>10} {:>10}",
@@ -352,7 +352,7 @@ fn print_summary(scene: &Scene, s: &StrandSummary) {
         strand.length(),
         strand.friction()
     );
-    let rows: [(&str, String); 13] = [
+    let rows: [(&str, String); 15] = [
         ("helix radius R_w", opt(s.r_w, "m")),
         ("pitch P", opt(s.pitch, "m")),
         ("lay angle", opt(s.lay_angle_deg, "deg")),
@@ -373,8 +373,20 @@ fn print_summary(scene: &Scene, s: &StrandSummary) {
             format!("{:.6e} N m^2", s.k_min_paper),
         ),
         (
+            "wire stick stiffness",
+            format!(
+                "{} (section.stick_stiffness), factor {} on eq. (22a)",
+                s.stick_stiffness,
+                s.stick_factor.map_or("-".into(), |f| format!("{f:.4}"))
+            ),
+        ),
+        (
             "bending stiffness K_max (all stick)",
-            format!("{:.6e} N m^2", s.k_max),
+            format!("{:.6e} N m^2 (used)", s.k_max),
+        ),
+        (
+            "K_max, plane section (eq. (22a))",
+            format!("{:.6e} N m^2", s.k_max_plane_section),
         ),
         ("traditional EI", format!("{:.6e} N m^2", s.ei_traditional)),
         ("traditional EA", format!("{:.6e} N", s.ea_traditional)),

@@ -179,3 +179,70 @@ fn section_shows_the_base_stiffness_and_both_values() {
         assert!(err.contains(field), "{err}");
     }
 }
+
+/// Without `section`, the wires' stick stiffness is the bonded strand's: K_max is K_min plus
+/// the plane-section stick stiffness (m/2) eta E_w A_w R_w^2 (written out here) times the
+/// stick factor, which is below 1; the plane section's K_max is shown beside it, and a scene
+/// naming `plane_section` uses it.
+#[test]
+fn section_shows_the_stick_stiffness_and_both_values() {
+    let p = fig7_with_section("stick-default", "");
+    let out = strand(&["section", p.to_str().unwrap(), "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let (e, a, r_w) = (2.0e8, 20f64.to_radians(), 2.5e-3);
+    let area = std::f64::consts::PI * 2e-3f64.powi(2) / 4.0;
+    let plane = 3.0 * a.cos().powi(3) * e * area * r_w * r_w;
+    let get = |k: &str| v[k].as_f64().unwrap_or_else(|| panic!("no {k}"));
+    let (k_min, k_max, k_plane, f) = (
+        get("K_min"),
+        get("K_max"),
+        get("K_max_plane_section"),
+        get("stick_factor"),
+    );
+    assert_eq!(v["stick_stiffness"], "bonded");
+    assert!(
+        (k_plane - k_min - plane).abs() < 1e-12 * k_plane,
+        "{k_plane} vs {}",
+        k_min + plane
+    );
+    assert!(f > 0.5 && f < 1.0, "stick factor {f}");
+    assert!(
+        (k_max - k_min - f * plane).abs() < 1e-12 * k_max,
+        "{k_max} vs {}",
+        k_min + f * plane
+    );
+    let out = strand(&["section", p.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains(&format!(
+            "bonded (section.stick_stiffness), factor {f:.4} on eq. (22a)"
+        )),
+        "{text}"
+    );
+    assert!(
+        text.contains(&format!("{k_max:.6e} N m^2 (used)")),
+        "{text}"
+    );
+    assert!(text.contains(&format!("{k_plane:.6e}")), "{text}");
+    // The plane section, named.
+    let p = fig7_with_section("plane", r#"{"stick_stiffness": "plane_section"}"#);
+    let out = strand(&["section", p.to_str().unwrap(), "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["stick_stiffness"], "plane_section");
+    assert_eq!(v["stick_factor"].as_f64(), Some(1.0));
+    assert_eq!(v["K_max"], v["K_max_plane_section"]);
+    // An unknown form is rejected naming the field.
+    let p = fig7_with_section("bad-stick", r#"{"stick_stiffness": "shear_lag"}"#);
+    let out = strand(&["section", p.to_str().unwrap()]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("section.stick_stiffness: unknown stick stiffness"),
+        "{err}"
+    );
+}

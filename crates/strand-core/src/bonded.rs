@@ -45,6 +45,79 @@ use std::f64::consts::PI;
 
 use crate::geometry::Strand;
 
+/// Which stick stiffness the helical wires have in the stick/slip section laws
+/// (`section.stick_stiffness`).
+///
+/// The default is [`StickStiffness::Bonded`]: the plane-section K_stick of eq. (22a) assumes
+/// that each wire's axial strain follows the rigid rotation of the strand's section, which a
+/// wire held to the core only along its contact line cannot do (module docs). The rod model
+/// of the bonded strand gives the share of K_stick that the bond delivers from the strand's
+/// geometry and materials alone (no fitted constant), and the fine model converges to that
+/// model (`cargo xtask bonded`); the plane section's K_max is an upper bound the strand does
+/// not reach (Table 1: stick factor 0.76). [`StickStiffness::PlaneSection`] keeps the
+/// paper's law, for the scenes that reproduce it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StickStiffness {
+    /// The plane-section K_stick_i = eta E_w A_w (R_w sin phi_i)^2 of eq. (22a) times the rod
+    /// model's stick factor ([`BondedStiffness::stick_factor`], rigid bond on the touching
+    /// surfaces). The default.
+    #[default]
+    Bonded,
+    /// The plane-section K_stick_i of eq. (22a), as the paper (all-stick stiffness K_max).
+    PlaneSection,
+}
+
+impl StickStiffness {
+    /// Every form, in the order of the documentation.
+    pub const ALL: [StickStiffness; 2] = [StickStiffness::Bonded, StickStiffness::PlaneSection];
+
+    /// Name as used in scene files (`section.stick_stiffness`).
+    pub fn name(self) -> &'static str {
+        match self {
+            StickStiffness::Bonded => "bonded",
+            StickStiffness::PlaneSection => "plane_section",
+        }
+    }
+
+    /// The form named `name` (as in scene files), if any.
+    pub fn from_name(name: &str) -> Option<StickStiffness> {
+        Self::ALL.into_iter().find(|k| k.name() == name)
+    }
+
+    /// Factor on the plane-section stick stiffness of `strand`'s helical wires (-): 1 for
+    /// `plane_section`; for `bonded` the rod model's [`BondedStiffness::stick_factor`] with a
+    /// rigid bond on the touching surfaces (1 without a helical layer). With one or two wires
+    /// the model cannot carry the core's tilt, which then varies along the strand, so their
+    /// factor takes the core rigid in shear and keeps only the wires' own compliance (an
+    /// upper bound on the factor).
+    pub fn factor(self, strand: &Strand) -> f64 {
+        match self {
+            StickStiffness::PlaneSection => 1.0,
+            StickStiffness::Bonded => {
+                let Some(layer) = strand.layer() else {
+                    return 1.0;
+                };
+                let options = BondedOptions {
+                    core_shear: if layer.wires() < 3 {
+                        f64::INFINITY
+                    } else {
+                        1.0
+                    },
+                    ..Default::default()
+                };
+                bonded_stiffness(strand, &options).map_or(1.0, |b| b.stick_factor())
+            }
+        }
+    }
+}
+
+impl std::fmt::Display for StickStiffness {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// Idealisations of the bonded-strand model, to separate its compliances (all `1.0` and
 /// `None`: the physical strand with a rigid bond on the touching surfaces).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -15,7 +15,7 @@ pub mod section;
 pub mod summary;
 pub mod wire_bending;
 
-pub use bonded::{BondedOptions, BondedStiffness, bonded_stiffness};
+pub use bonded::{BondedOptions, BondedStiffness, StickStiffness, bonded_stiffness};
 pub use error::InputError;
 pub use geometry::{
     DEFAULT_FRICTION, HelixLayer, LayDirection, LayerSpec, Material, Strand, StrandSpec,

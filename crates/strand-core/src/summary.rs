@@ -3,6 +3,7 @@
 
 use serde::Serialize;
 
+use crate::bonded::StickStiffness;
 use crate::geometry::Strand;
 use crate::section::{LawKind, SectionLaw, SectionOptions, WireReport};
 use crate::wire_bending::BaseStiffness;
@@ -36,9 +37,19 @@ pub struct StrandSummary {
     /// The paper's K_min, with eta = cos^3(alpha) (N m^2), eq. (11).
     #[serde(rename = "K_min_paper")]
     pub k_min_paper: f64,
-    /// All-stick bending stiffness K_max (N m^2): K_min plus eq. (22a) summed.
+    /// Which stick stiffness the helical wires have (`section.stick_stiffness`).
+    pub stick_stiffness: StickStiffness,
+    /// Factor on the plane-section stick stiffness that the laws use (-): the rod model's
+    /// for `bonded`, 1 for `plane_section`; `None` for a plain wire.
+    pub stick_factor: Option<f64>,
+    /// All-stick bending stiffness the section laws use (N m^2): K_min plus eq. (22a) summed,
+    /// times `stick_factor`.
     #[serde(rename = "K_max")]
     pub k_max: f64,
+    /// The plane-section all-stick stiffness, K_min plus eq. (22a) summed (N m^2): the
+    /// paper's K_max with this K_min.
+    #[serde(rename = "K_max_plane_section")]
+    pub k_max_plane_section: f64,
     /// Traditional beam bending stiffness EI (N m^2).
     #[serde(rename = "EI_traditional")]
     pub ei_traditional: f64,
@@ -91,7 +102,11 @@ impl StrandSummary {
             base_stiffness: base,
             k_min: strand.min_bending_stiffness(base),
             k_min_paper: strand.min_bending_stiffness(BaseStiffness::Paper),
-            k_max: strand.max_bending_stiffness(base),
+            stick_stiffness: options.stick_stiffness,
+            stick_factor: l.map(|_| options.stick_stiffness.factor(strand)),
+            k_max: SectionLaw::with_options(strand, LawKind::Continuous, options)
+                .stick_bending_stiffness(),
+            k_max_plane_section: strand.max_bending_stiffness(base),
             ei_traditional: t.bending_stiffness,
             ea_traditional: t.axial_stiffness,
         }

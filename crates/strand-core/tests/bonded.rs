@@ -1,12 +1,13 @@
 //! The bonded-strand rod model (`strand_core::bonded`) against independent closed forms: with
 //! the wires free to slide it is Costello's frictionless stiffness; with the bond on the
 //! wires' axes and a shear-rigid core it is that plus the plane-section stick stiffness; a
-//! nearly straight layer delivers the whole plane-section stiffness.
+//! nearly straight layer delivers the whole plane-section stiffness. The section laws'
+//! `bonded` stick stiffness takes the model's stick factor on each wire's spring.
 
 use proptest::prelude::*;
 use strand_core::{
-    BondedOptions, LayDirection, LayerSpec, Material, Strand, StrandSpec, WireSpec,
-    bonded_stiffness,
+    BondedOptions, LawKind, LayDirection, LayerSpec, Material, SectionLaw, SectionOptions,
+    StickStiffness, Strand, StrandSpec, WireSpec, bonded_stiffness,
 };
 
 /// A 1+m strand (m >= 3) with its own core and wire materials.
@@ -177,4 +178,69 @@ fn two_wires_need_a_shear_rigid_core() {
         bonded_stiffness(&s, &stiff).unwrap().bonded,
     );
     assert!((a / b - 1.0).abs() < 1e-9, "{a} {b}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// The section laws' stick stiffness: `bonded` scales each wire's plane-section spring by
+    /// the rod model's stick factor (rigid bond on the touching surfaces), `plane_section` by
+    /// 1. The law's all-stick secant, averaged over a pitch at a curvature far below the first
+    /// slip, is K_min plus the factor times (m/2) eta E_w A_w R_w^2 (written out here), and the
+    /// friction limit is unchanged: far beyond the last slip both forms give the same moment.
+    #[test]
+    fn the_stick_factor_scales_the_wires_springs_only(s in random_strand()) {
+        let l = *s.layer().unwrap();
+        let w = &l.spec.wire;
+        let plane = 0.5 * l.wires() as f64 * l.eta * w.material.youngs_modulus * w.area()
+            * l.radius * l.radius;
+        let rod = bonded_stiffness(&s, &BondedOptions::default()).unwrap();
+        prop_assert_eq!(StickStiffness::Bonded.factor(&s), rod.stick_factor());
+        prop_assert_eq!(StickStiffness::PlaneSection.factor(&s), 1.0);
+        let eps = 1e-3;
+        let mean_moment = |law: &SectionLaw, kappa: f64| {
+            let n = 64;
+            (0..n)
+                .map(|i| {
+                    let st = law.station(l.pitch * (i as f64 + 0.5) / n as f64);
+                    law.planar(&st, eps, kappa, &[], &mut []).moment
+                })
+                .sum::<f64>()
+                / n as f64
+        };
+        for stick in StickStiffness::ALL {
+            let options = SectionOptions { stick_stiffness: stick, ..Default::default() };
+            let law = SectionLaw::with_options(&s, LawKind::Continuous, &options);
+            let k_min = law.base_bending_stiffness();
+            let want = k_min + stick.factor(&s) * plane;
+            prop_assert!((law.stick_bending_stiffness() - want).abs() <= 1e-12 * want);
+            // Below the first slip (the smallest limit is mu sin(alpha) eta E A cos^2 eps
+            // times the lever angle near the neutral axis; 1e-12 1/m is far below it).
+            let kappa = 1e-12;
+            let secant = mean_moment(&law, kappa) / kappa;
+            prop_assert!((secant - want).abs() <= 1e-9 * want, "{} vs {}", secant, want);
+        }
+        let [bonded, plane_law] = StickStiffness::ALL.map(|stick| {
+            let options = SectionOptions { stick_stiffness: stick, ..Default::default() };
+            SectionLaw::with_options(&s, LawKind::Continuous, &options)
+        });
+        // Where every wire slips in both forms, the moments agree (the wires' part to
+        // round-off).
+        let kappa = 1e3;
+        let mut slipping = 0;
+        for i in 0..64 {
+            let st = bonded.station(l.pitch * (i as f64 + 0.5) / 64.0);
+            let a = bonded.planar(&st, eps, kappa, &[], &mut []);
+            let b = plane_law.planar(&st, eps, kappa, &[], &mut []);
+            if a.slipping == l.wires() && b.slipping == l.wires() {
+                slipping += 1;
+                let wires = a.moment - bonded.base_bending_stiffness() * kappa;
+                prop_assert!(
+                    (a.moment - b.moment).abs() <= 1e-9 * wires.abs(),
+                    "{} vs {}", a.moment, b.moment
+                );
+            }
+        }
+        prop_assert!(slipping > 0);
+    }
 }

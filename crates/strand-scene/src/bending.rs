@@ -38,13 +38,16 @@ pub struct BendingSummary {
     pub scene: String,
     /// Section law the fine curve is compared with.
     pub law: String,
+    /// The wires' stick stiffness of the law (`section.stick_stiffness`).
+    pub stick_stiffness: String,
     /// Tension T (N).
     pub tension: f64,
     /// Axial strain of the tension, T / EA_eq (-).
     pub strain: f64,
     /// All-slip bending stiffness K_min (N m^2).
     pub k_min: f64,
-    /// All-stick bending stiffness K_max (N m^2).
+    /// All-stick bending stiffness of the law, K_min plus the wires' stick stiffness in the
+    /// form `section.stick_stiffness` (N m^2).
     pub k_max: f64,
     /// Smallest critical curvature of the law over a pitch at this tension (1/m).
     pub first_slip_curvature: Option<f64>,
@@ -198,10 +201,11 @@ pub fn run_bending(
     let summary = BendingSummary {
         scene: scene.name.clone(),
         law: scene.law.to_string(),
+        stick_stiffness: scene.section.stick_stiffness.to_string(),
         tension: opts.tension,
         strain: eps,
         k_min: strand.min_bending_stiffness(scene.section.base_stiffness),
-        k_max: strand.max_bending_stiffness(scene.section.base_stiffness),
+        k_max: law.stick_bending_stiffness(),
         first_slip_curvature: first,
         pitches: opts.pitches,
         segments_per_pitch: opts.segments_per_pitch,

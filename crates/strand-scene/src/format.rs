@@ -59,6 +59,11 @@ pub struct SectionFile {
     /// `foti`, `papailiou` or `paper` (eta = cos^3(alpha), eqs. (10), (11)).
     #[serde(default)]
     pub base_stiffness: Option<String>,
+    /// The helical wires' stick stiffness: `bonded` (default; the plane-section K_stick times
+    /// the bonded strand's stick factor, `strand_core::bonded`) or `plane_section` (eq. (22a),
+    /// the paper's).
+    #[serde(default)]
+    pub stick_stiffness: Option<String>,
 }
 
 /// A core wire.

@@ -8,7 +8,7 @@ use std::path::Path;
 
 use strand_core::{
     BaseStiffness, DEFAULT_FRICTION, InputError, LawKind, LayDirection, LayerSpec, Material,
-    SectionOptions, Strand, StrandSpec, WireSpec,
+    SectionOptions, StickStiffness, Strand, StrandSpec, WireSpec,
 };
 
 use nalgebra::Vector3;
@@ -508,6 +508,18 @@ fn section(file: Option<&SectionFile>) -> Result<SectionOptions, SceneError> {
                 "section.base_stiffness",
                 format!(
                     "unknown base stiffness `{name}`: expected {}",
+                    names.join(", ")
+                ),
+            )
+        })?;
+    }
+    if let Some(name) = file.stick_stiffness.as_deref() {
+        options.stick_stiffness = StickStiffness::from_name(name).ok_or_else(|| {
+            let names: Vec<&str> = StickStiffness::ALL.iter().map(|b| b.name()).collect();
+            SceneError::new(
+                "section.stick_stiffness",
+                format!(
+                    "unknown stick stiffness `{name}`: expected {}",
                     names.join(", ")
                 ),
             )

@@ -11,7 +11,7 @@
 //! the extrapolation leaves: the number of pitches (end effects), two contact points per
 //! segment, the tension.
 //!
-//! Criteria (`validation/bonded.json` holds them with their reasons): every variant's
+//! Criteria (`validation/bonded/criteria.json` holds them with their reasons): every variant's
 //! extrapolated fine stiffness within the stated distance of the rod model; with the bond on
 //! the wires' axes and a shear-rigid core, the fine stiffness within 2 % of K_max; the
 //! physical strand's rod-model value (rigid bond) within 5 % of the fine model's. The
@@ -47,7 +47,7 @@ pub struct BondedArgs {
     pub out: Option<PathBuf>,
 }
 
-/// Limits of the study and their reasons (`validation/bonded.json`).
+/// Limits of the study and their reasons (`validation/bonded/criteria.json`).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Limits {
@@ -416,7 +416,7 @@ fn study(sname: &str, strand: &Strand, load: &Loading, v: &Variant) -> anyhow::R
 pub fn run(args: &BondedArgs) -> anyhow::Result<Report> {
     let t0 = Instant::now();
     let root = repo_root();
-    let path = root.join("validation").join("bonded.json");
+    let path = root.join("validation/bonded/criteria.json");
     let text = std::fs::read_to_string(&path).with_context(|| format!("{}", path.display()))?;
     let limits: Limits =
         serde_json::from_str(&text).with_context(|| format!("{}", path.display()))?;
@@ -455,7 +455,11 @@ pub fn run(args: &BondedArgs) -> anyhow::Result<Report> {
         t0.elapsed().as_secs_f64(),
         rows,
     )
-    .titled("Bonded stiffness study", "strand", "validation/bonded.json");
+    .titled(
+        "Bonded stiffness study",
+        "strand",
+        "validation/bonded/criteria.json",
+    );
     let out = args
         .out
         .clone()

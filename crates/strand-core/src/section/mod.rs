@@ -82,7 +82,8 @@ impl std::fmt::Display for LawKind {
 struct LayerLaw {
     wires: usize,
     radius: f64,
-    /// eta E_w A_w (N).
+    /// The slider's spring: eta E_w A_w times the stick factor of `section.stick_stiffness`
+    /// (N).
     k: f64,
     /// 1 / k (1/N).
     inv_k: f64,
@@ -210,8 +211,8 @@ pub struct WireReport {
     pub wire: usize,
     /// Phase phi_i(x) in (-pi, pi] (rad).
     pub phase: f64,
-    /// Stick stiffness K_stick_i = eta E_w A_w (R_w sin theta)^2 for this bending direction
-    /// (N m^2), eq. (22a).
+    /// Stick stiffness K_stick_i = f eta E_w A_w (R_w sin theta)^2 for this bending direction
+    /// (N m^2): eq. (22a) times the stick factor f of `section.stick_stiffness`.
     pub k_stick: f64,
     /// Friction-limited moment M_slip_i (N m), eq. (22b) times kappa.
     pub m_slip: f64,
@@ -248,11 +249,14 @@ impl SectionLaw {
                 let a = l.lay_angle();
                 let w = &l.spec.wire;
                 let c2 = a.cos().powi(2);
+                // The stick factor is a compliance in series with the wire's axial
+                // stiffness: it scales the slider's spring, not its friction limit.
+                let k = options.stick_stiffness.factor(strand) * l.wire_axial_stiffness();
                 LayerLaw {
                     wires: l.wires(),
                     radius: l.radius,
-                    k: l.wire_axial_stiffness(),
-                    inv_k: 1.0 / l.wire_axial_stiffness(),
+                    k,
+                    inv_k: 1.0 / k,
                     cap_per_strain: l.eta * w.area() * w.material.youngs_modulus * c2,
                     capstan: strand.friction() * a.sin(),
                     paper_factor: c2,
@@ -300,6 +304,15 @@ impl SectionLaw {
     /// Bending stiffness with every wire slipping: K_min, or EI for `constant` (N m^2).
     pub fn base_bending_stiffness(&self) -> f64 {
         self.base_bending
+    }
+    /// Bending stiffness with every wire sticking: K_min plus the wires' stick stiffness,
+    /// (m/2) f eta E_w A_w R_w^2 with the stick factor f of `section.stick_stiffness`; EI for
+    /// `constant` (N m^2).
+    pub fn stick_bending_stiffness(&self) -> f64 {
+        self.base_bending
+            + self
+                .layer
+                .map_or(0.0, |l| 0.5 * l.wires as f64 * l.k * l.radius * l.radius)
     }
     /// Number of friction sliders per station (0 for `constant` and plain wires).
     pub fn sliders(&self) -> usize {

@@ -1,5 +1,6 @@
 //! Choices a scene makes about the section law beyond its kind (the scene's `section` object).
 
+use crate::bonded::StickStiffness;
 use crate::wire_bending::BaseStiffness;
 
 /// Options of the section laws of the equivalent beam. Build with struct update syntax,
@@ -10,13 +11,18 @@ pub struct SectionOptions {
     /// The helical wires' frictionless bending stiffness in K_min (`section.base_stiffness`;
     /// default Costello's).
     pub base_stiffness: BaseStiffness,
+    /// The helical wires' stick stiffness (`section.stick_stiffness`; default the bonded
+    /// strand's, the plane section's K_stick times the rod model's stick factor).
+    pub stick_stiffness: StickStiffness,
 }
 
 impl SectionOptions {
-    /// The paper's section: K_min with eta = cos^3(alpha) (eqs. (10), (11)).
+    /// The paper's section: K_min with eta = cos^3(alpha) (eqs. (10), (11)) and the
+    /// plane-section stick stiffness (eq. (22a)).
     pub fn paper() -> Self {
         SectionOptions {
             base_stiffness: BaseStiffness::Paper,
+            stick_stiffness: StickStiffness::PlaneSection,
         }
     }
 }
