@@ -29,6 +29,8 @@ use strand_core::{
 };
 use strand_fine::{BendingTest, ContactOptions, SpringScale, StaticOptions};
 
+mod curve;
+
 use crate::validate::machine::Provenance;
 use crate::validate::repo_root;
 use crate::validate::report::{Bound, Report, Row};
@@ -39,7 +41,8 @@ pub struct BondedArgs {
     /// Only the Table 1 strand's physical and compliance-free variants.
     #[arg(long)]
     pub quick: bool,
-    /// Only this variant (e.g. `physical`, `removed`).
+    /// Only this variant (e.g. `physical`, `removed`; `curve`: only the moment-curvature
+    /// curves with friction).
     #[arg(long, value_name = "NAME")]
     pub variant: Option<String>,
     /// Folder of the report [default: target/bonded].
@@ -59,6 +62,10 @@ struct Limits {
     physical: Limit,
     /// Largest remaining discretisation error of an extrapolated value (relative).
     discretisation: Limit,
+    /// Largest |M_law / M_fine - 1| along the moment-curvature curve with friction.
+    curve: Limit,
+    /// Largest change of the curve's fine moment from 24 to 48 segments per pitch.
+    curve_mesh: Limit,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -449,6 +456,25 @@ pub fn run(args: &BondedArgs) -> anyhow::Result<Report> {
     }
     let mut rows = judge(&measured, &limits);
     rows.extend(failed);
+    // The equivalent law against the fine bending test with friction (not in --quick).
+    let mut curves = Vec::new();
+    if !args.quick && args.variant.as_ref().is_none_or(|n| n == "curve") {
+        let strand = curve::strand();
+        for t in curve::TENSIONS {
+            match curve::run(&strand, t) {
+                Ok(c) => {
+                    rows.extend(curve::judge(&c, &limits.curve, &limits.curve_mesh));
+                    curves.push(c);
+                }
+                Err(e) => rows.push(Row::failed(
+                    "table1",
+                    &format!("curve-T{t}"),
+                    "-",
+                    format!("{e:#}"),
+                )),
+            }
+        }
+    }
     let report = Report::new(
         Provenance::detect(&root),
         args.quick,
@@ -465,12 +491,19 @@ pub fn run(args: &BondedArgs) -> anyhow::Result<Report> {
         .clone()
         .unwrap_or_else(|| root.join("target").join("bonded"));
     report.write(&out)?;
-    let detail = details(&measured);
+    let mut detail = details(&measured);
+    for c in &curves {
+        detail += &curve::details(c);
+    }
     std::fs::write(out.join("study.md"), &detail)
         .with_context(|| format!("writing {}", out.join("study.md").display()))?;
     std::fs::write(
         out.join("study.json"),
         serde_json::to_string_pretty(&measured)? + "\n",
+    )?;
+    std::fs::write(
+        out.join("curves.json"),
+        serde_json::to_string_pretty(&curves)? + "\n",
     )?;
     print!("{detail}");
     Ok(report)

@@ -748,6 +748,26 @@ impl SectionLaw {
             .collect()
     }
 
+    /// Planar moment (N m) at strain `eps` and signed curvature `kappa` (1/m), bent from
+    /// straight (no committed slip), averaged over `stations` evenly spaced stations of one
+    /// pitch (the strand's length without a helical layer): what a bending test measures over
+    /// whole pitches.
+    pub fn pitch_mean_moment(&self, eps: f64, kappa: f64, stations: usize) -> f64 {
+        let pitch = self
+            .strand
+            .layer()
+            .map_or(self.strand.length(), |l| l.pitch);
+        let slip = vec![0.0; self.state_len()];
+        let mut trial = slip.clone();
+        let sum: f64 = (0..stations)
+            .map(|i| {
+                let st = self.station(pitch * (i as f64 + 0.5) / stations as f64);
+                self.planar(&st, eps, kappa, &slip, &mut trial).moment
+            })
+            .sum();
+        sum / stations as f64
+    }
+
     /// Secant bending stiffness |M| / |kappa| for a signed planar curvature (N m^2); at zero
     /// curvature its limit from the +y-convex side.
     pub fn planar_secant(&self, st: &Station, eps: f64, kappa: f64, slip: &[f64]) -> f64 {
