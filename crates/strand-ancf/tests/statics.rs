@@ -202,7 +202,7 @@ fn paper_section3_tension_stiffness_and_sag() {
     // Toward the tip the wires stick: the stiffness rises to the all-stick K_max (six wires:
     // K_min + sum K_stick is K_max at every station). At the very end the tension, and with it
     // the friction, vanishes again, so look at the largest value over the last 20 %.
-    let kmax = s.max_bending_stiffness(law.options().base_stiffness);
+    let kmax = law.stick_bending_stiffness();
     let top = sol
         .points
         .iter()

@@ -717,11 +717,10 @@ pub fn near_straight(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
                         straight_moment = straight_moment.max(p.moment.abs());
                     }
                 } else if e != 0.0 && name.ends_with("planar") {
-                    let base = beam.law().options().base_stiffness;
                     let expect = if e > 0.0 {
-                        strand.max_bending_stiffness(base)
+                        beam.law().stick_bending_stiffness()
                     } else {
-                        strand.min_bending_stiffness(base)
+                        beam.law().base_bending_stiffness()
                     };
                     for p in &ev.points {
                         secant = secant.max(rel(p.moment / p.kappa, expect));

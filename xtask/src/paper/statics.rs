@@ -120,11 +120,12 @@ pub(crate) fn slipping_along(rows: &[WireRow]) -> Vec<(f64, f64)> {
 pub fn figures(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Finding>> {
     let mut findings = Vec::new();
     let strand = &runs[0].scene.strand;
-    let base = runs[0].scene.section.base_stiffness;
-    let (k_min, k_max) = (
-        strand.min_bending_stiffness(base),
-        strand.max_bending_stiffness(base),
+    let law = strand_core::SectionLaw::with_options(
+        strand,
+        strand_core::LawKind::Continuous,
+        &runs[0].scene.section,
     );
+    let (k_min, k_max) = (law.base_bending_stiffness(), law.stick_bending_stiffness());
     let ei = strand.traditional().bending_stiffness;
     let mut eqs = Vec::new();
     let mut trads = Vec::new();
