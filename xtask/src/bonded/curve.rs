@@ -24,8 +24,9 @@ use crate::validate::report::{Bound, Row};
 
 /// Tensions of the two curves (N): strand strains 2.2e-3 and 8.8e-3 on Table 1.
 pub const TENSIONS: [f64; 2] = [10.0, 40.0];
-/// Curvatures of each curve (1/m): 0.01 to 3, geometric, 8 points; first slip of the law is at
-/// 0.07 (10 N) and 0.27 1/m (40 N), and at 3 1/m the stiffness is within 30 % of K_min.
+/// Curvatures of each curve (1/m): 0.01 to 3, geometric, 8 points. The law's first slip is at
+/// kappa = cos^2(alpha) eps mu sin(alpha) / (f R_w): 0.105 (10 N) and 0.42 1/m (40 N); at
+/// 3 1/m its secant stiffness is 1.31 K_min (10 N) and 2.2 K_min (40 N).
 const CURVATURES: (f64, f64, usize) = (0.01, 3.0, 8);
 /// Segments per pitch of the two meshes.
 pub const MESHES: [usize; 2] = [24, 48];
