@@ -700,11 +700,10 @@ pub fn compression_zero_tension(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
 }
 
 /// Curvature 1e-12 and exactly zero: finite forces and tangents; under tension every wire
-/// sticks (secant K_max), in compression none carries (K_min).
+/// sticks (secant: the law's all-stick stiffness), in compression none carries (K_min).
 pub fn near_straight(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
     let (mut secant, mut finite, mut straight_moment) = (0.0f64, true, 0.0f64);
     for (name, beam) in strand_beams(ctx)? {
-        let strand = beam.law().strand().clone();
         for e in [1e-4, -1e-4, 0.0] {
             for kappa in [1e-12, 0.0] {
                 let ev = evaluate(&beam, &arc(&beam, kappa, e, 0.0, Z))
