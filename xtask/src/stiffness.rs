@@ -196,7 +196,12 @@ fn tip(
         dir.display(),
         t.elapsed().as_secs_f64()
     );
-    Ok(summary[0].tip)
+    if let Some(e) = summary[0].failure() {
+        anyhow::bail!("{}: {e}", scene.name);
+    }
+    summary[0]
+        .tip
+        .with_context(|| format!("{}: no tip in the summary", scene.name))
 }
 
 fn distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {

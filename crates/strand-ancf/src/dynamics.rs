@@ -150,6 +150,8 @@ pub struct Frame<'a> {
     pub energies: Energies,
     /// State at every bending point.
     pub points: &'a [PointState],
+    /// Committed slip state of the section law ([`Beam::state_len`] values).
+    pub slip: &'a [f64],
 }
 
 /// Summary of a dynamic run.
@@ -167,6 +169,9 @@ pub struct DynamicSummary {
     pub newton_iterations: usize,
     /// Iteration matrices built and factorized (generalized-alpha).
     pub factorizations: usize,
+    /// Steps of the scheme's step size that Newton could not take and that were taken in
+    /// halves instead (generalized-alpha).
+    pub cut_steps: usize,
     /// Largest |total energy - initial total energy| over the run (J).
     pub balance_error: f64,
     /// Largest kinetic energy over the run (J): a scale for the balance error.
@@ -441,6 +446,7 @@ fn verlet(
         v: &v,
         energies: en,
         points: &pts,
+        slip: &slip,
     });
     let mut next_out = opts.output_interval;
     for step in 1..=n_steps {
@@ -482,6 +488,7 @@ fn verlet(
                 v: &v,
                 energies: en,
                 points: &pts,
+                slip: &slip,
             });
             while next_out <= t + 1e-9 * h {
                 next_out += opts.output_interval;
@@ -495,6 +502,7 @@ fn verlet(
         steps: n_steps,
         newton_iterations: 0,
         factorizations: 1,
+        cut_steps: 0,
         balance_error: ledger.balance_error,
         max_kinetic: ledger.max_kinetic,
         last: en,
@@ -538,6 +546,8 @@ struct AlphaWork {
     factor_h: f64,
     /// Iteration matrices built and factorized.
     factorizations: usize,
+    /// Steps taken in halves because Newton failed at their size.
+    cuts: usize,
     /// States to restore when a step is cut, one per level of cutting.
     saved: Vec<AlphaState>,
     /// Turns the kept iteration matrix with the strand.
@@ -731,6 +741,7 @@ fn alpha_step(
         }
         None if depth > 0 => {
             st.copy_from(&w.saved[level]);
+            w.cuts += 1;
             let a = alpha_step(beam, opts, rho, t0, 0.5 * h, depth - 1, st, w, pts, pts_new)?;
             let b = alpha_step(
                 beam,
@@ -799,6 +810,7 @@ fn generalized_alpha(
         solver: BandSolver::default(),
         factor_h: 0.0,
         factorizations: 0,
+        cuts: 0,
         saved: (0..=MAX_CUTS).map(|_| new_state()).collect(),
         rot: Corotation::new(beam, beam.reference()),
         stale: false,
@@ -842,6 +854,7 @@ fn generalized_alpha(
         v: &v,
         energies: en,
         points: &pts,
+        slip: &st.slip,
     });
     let mut newton_iterations = 0;
     let mut next_out = opts.output_interval;
@@ -879,6 +892,7 @@ fn generalized_alpha(
                 v: &v,
                 energies: en,
                 points: &pts,
+                slip: &st.slip,
             });
             while next_out <= t + 1e-9 * h {
                 next_out += opts.output_interval;
@@ -892,6 +906,7 @@ fn generalized_alpha(
         steps: n_steps,
         newton_iterations,
         factorizations: w.factorizations,
+        cut_steps: w.cuts,
         balance_error: ledger.balance_error,
         max_kinetic: ledger.max_kinetic,
         last: en,

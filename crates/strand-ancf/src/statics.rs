@@ -45,7 +45,7 @@ impl Default for StaticOptions {
 }
 
 /// A converged static state.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct StaticSolution {
     /// Coordinates, all of them.
     pub q: Vec<f64>,
@@ -82,6 +82,9 @@ pub enum StaticError {
         law: &'static str,
         /// What the last attempt reported.
         detail: String,
+        /// The last converged state (at load fraction `reached`), for the result files;
+        /// `None` if it could not be evaluated.
+        last: Option<Box<StaticSolution>>,
     },
     /// Evaluation failed at the start.
     #[error(transparent)]
@@ -203,16 +206,37 @@ pub fn solve_static(
                     } else {
                         ""
                     };
+                    let last = solution(beam, &mut w, q, slip, (steps, iterations, cuts))
+                        .ok()
+                        .map(|mut s| {
+                            s.residual = residual;
+                            Box::new(s)
+                        });
                     return Err(StaticError::Stalled {
                         reached: lambda,
                         min_step: opts.min_step,
                         law: law.name(),
                         detail: format!(": {detail}{why}"),
+                        last,
                     });
                 }
             }
         }
     }
+    let mut sol = solution(beam, &mut w, q, slip, (steps, iterations, cuts))?;
+    sol.residual = residual;
+    Ok(sol)
+}
+
+/// The solution at the converged state `(q, slip)` with its bending-point states and energy;
+/// `counts` are the accepted steps, the Newton iterations and the cut steps.
+fn solution(
+    beam: &Beam,
+    w: &mut Work,
+    q: Vec<f64>,
+    slip: Vec<f64>,
+    (steps, iterations, cuts): (usize, usize, usize),
+) -> Result<StaticSolution, BeamError> {
     let mut points = vec![PointState::default(); beam.points()];
     let ev = beam.internal(
         &q,
@@ -230,7 +254,7 @@ pub fn solve_static(
         steps,
         iterations,
         cuts,
-        residual,
+        residual: 0.0,
     })
 }
 

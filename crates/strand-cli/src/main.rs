@@ -45,14 +45,15 @@ enum Command {
         /// Scene file (only its `strand`, `law` and `section` are used).
         scene: PathBuf,
         /// Axial strain eps (-).
-        #[arg(long, allow_negative_numbers = true)]
+        #[arg(long, allow_hyphen_values = true)]
         strain: Option<f64>,
-        /// Curvature magnitude (1/m), convex side toward +y (the paper's hanging cantilever);
-        /// negative bends the other way.
-        #[arg(long, allow_negative_numbers = true)]
+        /// Signed curvature kappa_z (1/m), as in centerline.csv: positive turns the strand
+        /// counter-clockwise seen from +Z (toward +y for a strand along +x); the paper's
+        /// hanging cantilever (convex side toward +y) has negative curvature.
+        #[arg(long, allow_hyphen_values = true)]
         curvature: Option<f64>,
         /// Material coordinate x along the strand (m).
-        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         at: f64,
         /// Section law (default: the scene's).
         #[arg(long, value_enum)]
@@ -77,6 +78,11 @@ enum Command {
         /// repeat for several. Default: every model the scene names.
         #[arg(long = "model", value_name = "MODEL")]
         models: Vec<String>,
+        /// Most time steps a model's run may take, instead of the scene's
+        /// `analysis.max_steps` (default 10,000,000): a run that needs more is refused before
+        /// it starts, with the count and an estimate of its time.
+        #[arg(long, value_name = "N")]
+        max_steps: Option<usize>,
     },
     /// Virtual bending test of the scene's strand with the fine model: pulled to a tension,
     /// then bent along arcs of growing curvature; writes `DIR/bending.csv` (measured moment
@@ -130,7 +136,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             out,
             vtk,
             models,
-        } => run_scene(&scene, out, vtk, &models),
+            max_steps,
+        } => run_scene(&scene, out, vtk, &models, max_steps),
         Command::Bend {
             scene,
             tension,
@@ -232,8 +239,13 @@ fn run_scene(
     out: PathBuf,
     vtk: bool,
     only: &[String],
+    max_steps: Option<usize>,
 ) -> anyhow::Result<()> {
     let mut scene = Scene::load(path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    if let Some(n) = max_steps {
+        anyhow::ensure!(n >= 1, "--max-steps must be at least 1");
+        scene.max_steps = n;
+    }
     if !only.is_empty() {
         for m in only {
             let named = match m.as_str() {
@@ -271,17 +283,17 @@ fn run_scene(
     progress.bar.finish_and_clear();
     let summaries = result?;
     for s in &summaries {
+        let tip = s.tip.map_or(String::new(), |t| {
+            format!("; tip ({:.6}, {:.6}, {:.6}) m", t[0], t[1], t[2])
+        });
         println!(
-            "{:<12} {} law, {} dofs, {} steps, {} Newton iterations, {:.3} s; tip ({:.6}, {:.6}, {:.6}) m{}",
+            "{:<12} {} law, {} dofs, {} steps, {} Newton iterations, {:.3} s{tip}{}",
             s.model,
             s.law,
             s.dofs,
             s.steps,
             s.newton_iterations,
             s.wall_time_s,
-            s.tip[0],
-            s.tip[1],
-            s.tip[2],
             s.energy_balance_error.map_or(String::new(), |e| format!(
                 "; energy balance error {e:.3e} J"
             )),
@@ -289,8 +301,27 @@ fn run_scene(
         for w in &s.warnings {
             println!("{:<12} warning: {w}", "");
         }
+        if let (Some(reason), Some(error)) = (s.reason, &s.error) {
+            println!(
+                "{:<12} FAILED ({reason}): {error}; files in {}",
+                "",
+                out.join(&s.model).display()
+            );
+        }
     }
     println!("results in {}", out.display());
+    let failed: Vec<&str> = summaries
+        .iter()
+        .filter(|s| s.failed())
+        .map(|s| s.model.as_str())
+        .collect();
+    anyhow::ensure!(
+        failed.is_empty(),
+        "{} of {} models failed: {}",
+        failed.len(),
+        summaries.len(),
+        failed.join(", ")
+    );
     Ok(())
 }
 
@@ -403,10 +434,12 @@ fn print_point(p: &SectionPoint) {
         p.at,
         p.strain,
         p.curvature,
-        if p.curvature >= 0.0 {
-            " (convex side +y)"
+        if p.curvature > 0.0 {
+            " (turning toward +y: convex side -y)"
+        } else if p.curvature < 0.0 {
+            " (turning toward -y: convex side +y, the hanging cantilever's)"
         } else {
-            " (convex side -y)"
+            ""
         }
     );
     let rows: [(&str, String); 6] = [

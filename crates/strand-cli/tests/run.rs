@@ -116,3 +116,89 @@ fn dynamic_scene_writes_tip_energy_and_vtk() {
     assert_eq!(frames, 51);
     let _ = std::fs::remove_dir_all(out);
 }
+
+/// A model that fails does not stop the others: the equivalent beam of this scene cannot take
+/// the Verlet step (above its stable step) while the traditional beam, made heavy, can. The
+/// command says which model failed and why, exits with a failure, and both folders hold their
+/// files.
+#[test]
+fn a_failing_model_leaves_the_others_and_exits_with_failure() {
+    let out = std::env::temp_dir().join(format!("strand-run-iso-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    std::fs::create_dir_all(&out).unwrap();
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../validation/paper-fig8-pinned.json"
+    ))
+    .unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["analysis"] = serde_json::json!({ "kind": "dynamic", "duration": 0.01,
+        "integrator": "verlet", "time_step": 3e-4, "output_interval": 0.005 });
+    v["models"] = serde_json::json!({ "equivalent": { "elements": 8 },
+        "traditional": { "elements": 8, "mass_per_length": 21.16 } });
+    let scene = out.join("scene.json");
+    std::fs::write(&scene, v.to_string()).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_strand"))
+        .args([
+            "run",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stdout.contains("FAILED (unstable-step)"), "{stdout}");
+    assert!(
+        stderr.contains("1 of 2 models failed: equivalent"),
+        "{stderr}"
+    );
+    assert_eq!(
+        summary(&out.join("equivalent/summary.json"))["status"],
+        "failed"
+    );
+    assert_eq!(
+        summary(&out.join("traditional/summary.json"))["status"],
+        "ok"
+    );
+    let (_, tip) = csv(&out.join("traditional/tip.csv"));
+    assert_eq!(tip.len(), 3);
+    let _ = std::fs::remove_dir_all(out);
+}
+
+/// `strand bend` on counts too large for the machine stops with a message naming the flags,
+/// not a panic: 3e10 pitches (a strand beyond the plausible length, which panicked), a pitch
+/// count whose product with the segments overflows, and 1e5 pitches (64 GiB, which hung).
+#[test]
+fn bend_refuses_counts_it_cannot_build() {
+    for (pitches, segments, says) in [
+        ("30000000000", "12", "GiB"),
+        ("1152921504606846976", "16", "overflows"),
+        ("100000", "12", "64.1 GiB"),
+    ] {
+        let o = Command::new(env!("CARGO_BIN_EXE_strand"))
+            .args([
+                "bend",
+                "validation/paper-fig7-g8.json",
+                "--tension",
+                "10",
+                "--pitches",
+                pitches,
+                "--segments-per-pitch",
+                segments,
+                "--out",
+                std::env::temp_dir()
+                    .join("strand-bend-refused")
+                    .to_str()
+                    .unwrap(),
+            ])
+            .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{pitches}: {err}");
+        assert!(err.contains("--pitches") && err.contains(says), "{err}");
+    }
+}

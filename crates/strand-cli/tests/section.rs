@@ -246,3 +246,96 @@ fn section_shows_the_stick_stiffness_and_both_values() {
         "{err}"
     );
 }
+
+/// One curvature sign for `strand section --curvature` and the result files. At the bending
+/// points of the section-3 strand hanging under g = 12 (equivalent model, `continuous` law:
+/// no slip state) where some wires stick and some slip, `strand section` at a row's strain
+/// (tension / EA) and curvature gives the row's bending stiffness and, wire by wire, the
+/// critical curvature and state of wires.csv. The opposite sign mirrors the wire phases and
+/// gives other per-wire values, so a flipped convention fails.
+#[test]
+fn section_reads_the_curvature_of_the_result_files() {
+    let out = std::env::temp_dir().join(format!("strand-cli-sign-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let scene = "validation/paper-sec3-g12.json";
+    let o = strand(&[
+        "run",
+        scene,
+        "--model",
+        "equivalent",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let dir = out.join("equivalent");
+    let read = |f: &str| -> Vec<Vec<String>> {
+        std::fs::read_to_string(dir.join(f))
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').map(String::from).collect())
+            .collect()
+    };
+    let (centre, wires) = (read("centerline.csv"), read("wires.csv"));
+    let num = |s: &str| s.parse::<f64>().unwrap();
+    let v: serde_json::Value =
+        serde_json::from_slice(&strand(&["section", scene, "--json"]).stdout).unwrap();
+    let ea = v["EA"].as_f64().unwrap();
+    let section = |s: &str, eps: f64, k: f64| -> serde_json::Value {
+        let o = strand(&[
+            "section",
+            scene,
+            "--strain",
+            &format!("{eps:e}"),
+            "--curvature",
+            &format!("{k:e}"),
+            "--at",
+            s,
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    let mut checked = 0;
+    for row in centre.iter().step_by(7) {
+        let here: Vec<&Vec<String>> = wires.iter().filter(|w| w[0] == row[0]).collect();
+        let slipping = here.iter().filter(|w| w[4] == "slip").count();
+        if here.is_empty() || slipping == 0 || slipping == here.len() {
+            continue;
+        }
+        let (eps, k) = (num(&row[5]) / ea, num(&row[4]));
+        assert!(
+            k < 0.0,
+            "the hanging cantilever's curvature is negative: {row:?}"
+        );
+        let p = section(&row[0], eps, k);
+        let rel = |a: f64, b: f64| (a - b).abs() / b.abs().max(1e-300);
+        assert!(
+            rel(p["secant_stiffness"].as_f64().unwrap(), num(&row[6])) < 1e-9,
+            "{p} vs {row:?}"
+        );
+        let same = |p: &serde_json::Value| {
+            here.iter()
+                .zip(p["wires"].as_array().unwrap())
+                .all(|(w, pw)| {
+                    let crit = pw["critical_curvature"]
+                        .as_f64()
+                        .map_or(String::new(), |c| format!("{c}"));
+                    let close = match (crit.is_empty(), w[3].is_empty()) {
+                        (true, true) => true,
+                        (false, false) => rel(num(&crit), num(&w[3])) < 1e-9,
+                        _ => false,
+                    };
+                    close && pw["state"] == w[4].as_str()
+                })
+        };
+        assert!(same(&p), "{p} vs {here:?}");
+        assert!(
+            !same(&section(&row[0], eps, -k)),
+            "the sign matters at {row:?}"
+        );
+        checked += 1;
+    }
+    assert!(checked >= 3, "{checked} mixed rows");
+    let _ = std::fs::remove_dir_all(out);
+}

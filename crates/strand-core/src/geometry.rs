@@ -189,13 +189,17 @@ impl HelixLayer {
         1.0 / self.spec.lay_angle.cos()
     }
     /// Gap between neighbouring wires of the layer measured across the wires (m); negative
-    /// when they overlap. Uses the SPEC 1 criterion 2 R_w sin(pi/m) - d_w / cos(alpha).
+    /// when they overlap. Uses the SPEC 1 criterion 2 R_w sin(pi/m) - d_w / cos(alpha): the
+    /// chord between neighbouring wire centres in a cross-section against the width of a
+    /// wire's section along the circle. A single wire's neighbour is its own next turn, a whole
+    /// circle away: 2 pi R_w - d_w / cos(alpha) (equivalently, its turns P apart along the
+    /// strand overlap when P sin(alpha) < d_w), so that a wire laid near 90 deg is refused too.
     pub fn wire_gap(&self) -> f64 {
+        let width = self.spec.wire.diameter / self.spec.lay_angle.cos();
         if self.spec.wires < 2 {
-            return f64::INFINITY;
+            return 2.0 * PI * self.radius - width;
         }
-        2.0 * self.radius * (PI / self.spec.wires as f64).sin()
-            - self.spec.wire.diameter / self.spec.lay_angle.cos()
+        2.0 * self.radius * (PI / self.spec.wires as f64).sin() - width
     }
 }
 
@@ -259,12 +263,17 @@ impl Strand {
                 eta: l.lay_angle.cos().powi(3),
             };
             let gap = h.wire_gap();
-            if gap < 0.0 {
+            if gap.is_nan() || gap < 0.0 {
+                let rule = if l.wires == 1 {
+                    "a single wire's neighbouring turns need 2 pi R_w >= d_w / cos(alpha)"
+                } else {
+                    "neighbouring wires need 2 R_w sin(pi/m) >= d_w / cos(alpha)"
+                };
                 return Err(InputError::new(
                     p("wires"),
                     format!(
-                        "{} wires of diameter {} m at lay angle {:.4} deg overlap: neighbouring \
-                         wires need 2 R_w sin(pi/m) >= d_w / cos(alpha) (short by {:.3e} m)",
+                        "{} wires of diameter {} m at lay angle {:.4} deg overlap: {rule} (short \
+                         by {:.3e} m)",
                         l.wires,
                         l.wire.diameter,
                         l.lay_angle.to_degrees(),
@@ -470,6 +479,31 @@ mod tests {
             2.357176e-2,
             max_relative = 1e-6
         );
+    }
+
+    /// A single helical wire overlaps its own next turn when its pitch along the strand,
+    /// times sin(alpha), is below its diameter: laid at 89.9999 deg its turns are 2.7e-8 m
+    /// apart, far below 2 mm, and the strand is refused (the gap was infinite before). The
+    /// limit angle is arccos(d_w / (2 pi R_w)), 82.685 deg for Table 1 (R_w = 2.5 mm, d_w = 2
+    /// mm): accepted just below, refused just above.
+    #[test]
+    fn a_single_wire_overlaps_its_next_turn() {
+        let one = |deg: f64| {
+            let mut spec = table1();
+            spec.layers[0].wires = 1;
+            spec.layers[0].lay_angle = deg.to_radians();
+            Strand::new(spec)
+        };
+        let e = one(89.9999).unwrap_err();
+        assert_eq!(e.field, "layers[0].wires");
+        assert!(e.message.contains("single wire"), "{}", e.message);
+        let limit = (2e-3 / (2.0 * PI * 2.5e-3)).acos().to_degrees();
+        assert_relative_eq!(limit, 82.685, epsilon = 1e-3);
+        let ok = one(limit - 1e-3).unwrap();
+        let l = ok.layer().unwrap();
+        // The turns' distance across the wire, P sin(alpha) - d_w, has the sign of the gap.
+        assert!(l.wire_gap() > 0.0 && l.pitch * l.lay_angle().sin() > 2e-3);
+        assert!(one(limit + 1e-3).is_err());
     }
 
     #[test]

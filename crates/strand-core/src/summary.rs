@@ -65,13 +65,16 @@ pub struct SectionPoint {
     pub law: LawKind,
     /// Axial strain eps (-).
     pub strain: f64,
-    /// Curvature magnitude with the convex side toward +y (negative: the other way) (1/m).
+    /// Signed planar curvature `kappa_z` (1/m): positive when the strand turns
+    /// counter-clockwise seen from +Z (convex side toward -y for a strand along +x), negative
+    /// for the paper's hanging cantilever (convex side toward +y); the convention of the
+    /// result files.
     pub curvature: f64,
     /// Material coordinate x (m).
     pub at: f64,
     /// Axial force (N).
     pub axial_force: f64,
-    /// Bending moment magnitude, signed like `curvature` (N m).
+    /// Bending moment `M_z`, signed like `curvature` (N m).
     pub moment: f64,
     /// Secant bending stiffness M / kappa (N m^2).
     pub secant_stiffness: f64,
@@ -114,9 +117,9 @@ impl StrandSummary {
 }
 
 impl SectionPoint {
-    /// Evaluates `law` of `strand` (with the section `options`) at strain `eps`, curvature
-    /// magnitude `curvature` (positive: convex side toward +y, the paper's orientation;
-    /// negative: the other way) and material coordinate `at`, from a state without slip.
+    /// Evaluates `law` of `strand` (with the section `options`) at strain `eps`, signed planar
+    /// curvature `curvature` (`kappa_z`, see the field) and material coordinate `at`, from a
+    /// state without slip.
     pub fn new(
         strand: &Strand,
         law: LawKind,
@@ -127,7 +130,7 @@ impl SectionPoint {
     ) -> Self {
         let law_ = SectionLaw::with_options(strand, law, options);
         let st = law_.station(at);
-        let kappa = -curvature; // signed planar curvature kappa_z
+        let kappa = curvature;
         let slip = vec![0.0; law_.state_len()];
         let mut trial = slip.clone();
         let r = law_.planar(&st, eps, kappa, &slip, &mut trial);
@@ -139,7 +142,7 @@ impl SectionPoint {
             curvature,
             at,
             axial_force: r.axial_force,
-            moment: -r.moment,
+            moment: r.moment,
             secant_stiffness: law_.planar_secant(&st, eps, kappa, &slip),
             tangent_stiffness: r.moment_curvature,
             first_slip_curvature: crit.clone().reduce(f64::min),

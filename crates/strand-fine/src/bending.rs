@@ -122,6 +122,10 @@ pub enum BendingError {
     /// The strand has no helical layer.
     #[error("the strand has no helical layer")]
     NoLayer,
+    /// The test cannot be built: the strand a whole number of pitches long is not a valid
+    /// strand, or the segment count overflows.
+    #[error("{0}")]
+    Setup(String),
     /// A load step did not reach equilibrium.
     #[error("load step at curvature {curvature:.4e} 1/m: {source}")]
     Static {
@@ -257,9 +261,23 @@ impl BendingTest {
             friction: self.friction,
             ..strand.spec().clone()
         };
-        let strand = Strand::new(spec).expect("a valid strand with a new length");
-        let layer = strand.layer().expect("layer");
-        let n = self.pitches * self.segments_per_pitch;
+        let strand = Strand::new(spec).map_err(|e| {
+            BendingError::Setup(format!(
+                "a strand of {} pitches ({length:e} m): {}",
+                self.pitches,
+                e.within("strand")
+            ))
+        })?;
+        let layer = strand.layer().ok_or(BendingError::NoLayer)?;
+        let n = self
+            .pitches
+            .checked_mul(self.segments_per_pitch)
+            .ok_or_else(|| {
+                BendingError::Setup(format!(
+                    "{} pitches of {} segments: the segment count overflows",
+                    self.pitches, self.segments_per_pitch
+                ))
+            })?;
         let mut model = FineModel::from_strand(
             &strand,
             Discretisation {
@@ -482,6 +500,29 @@ impl BendingTest {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A strand of 3e10 pitches is not a valid strand (longer than 1e9 m): the test says so
+    /// instead of panicking.
+    #[test]
+    fn an_impossible_length_is_an_error() {
+        let strand = Strand::new(StrandSpec::paper(0.4, 2e8, 7801.0)).unwrap();
+        let test = BendingTest {
+            pitches: 30_000_000_000,
+            segments_per_pitch: 12,
+            tension: 10.0,
+            curvatures: vec![1.0],
+            contact: ContactOptions::default(),
+            friction: 0.3,
+            statics: StaticOptions::default(),
+            max_halvings: 1,
+            core_springs: SpringScale::default(),
+            wire_springs: SpringScale::default(),
+        };
+        match test.run(&strand) {
+            Err(BendingError::Setup(m)) => assert!(m.contains("strand.length"), "{m}"),
+            other => panic!("{other:?}"),
+        }
+    }
 
     #[test]
     fn arc_map_inverts() {

@@ -9,11 +9,11 @@ use std::time::Instant;
 
 use serde::Serialize;
 use strand_core::{SectionLaw, Strand};
-use strand_fine::{BendingPoint, BendingTest, ContactOptions, StaticOptions};
+use strand_fine::{BendingError, BendingPoint, BendingTest, ContactOptions, StaticOptions};
 
 use crate::output::Csv;
 use crate::run::record::{RunError, io_err};
-use crate::scene::Scene;
+use crate::scene::{MEMORY_LIMIT, Scene, fine_memory};
 
 /// Controls of a virtual bending test.
 #[derive(Debug, Clone, PartialEq)]
@@ -60,6 +60,9 @@ pub struct BendingSummary {
     /// Curvature, fine moment and law moment of every point (1/m, N m, N m).
     pub points: Vec<[f64; 3]>,
 }
+
+/// Most curvatures of one test: each is at least one Newton load step of the fine model.
+const MAX_CURVATURES: usize = 1000;
 
 /// Phase stations sampled over one pitch for the law's average.
 const STATIONS: usize = 48;
@@ -108,6 +111,36 @@ pub fn run_bending(
             opts.pitches, opts.segments_per_pitch
         )));
     }
+    let layer = strand.layer().expect("checked above");
+    let wires = 1 + layer.wires();
+    let need = match opts.pitches.checked_mul(opts.segments_per_pitch) {
+        Some(n) => fine_memory(n, wires),
+        None => f64::INFINITY,
+    };
+    if need.is_infinite() {
+        return Err(invalid(format!(
+            "--pitches {} x --segments-per-pitch {}: the segment count overflows",
+            opts.pitches, opts.segments_per_pitch
+        )));
+    }
+    if need > MEMORY_LIMIT {
+        return Err(invalid(format!(
+            "--pitches {} x --segments-per-pitch {} = {:.4e} segments per wire ({wires} wires) \
+             would need about {:.1} GiB of memory (limit {:.0} GiB)",
+            opts.pitches,
+            opts.segments_per_pitch,
+            opts.pitches as f64 * opts.segments_per_pitch as f64,
+            need / (1u64 << 30) as f64,
+            MEMORY_LIMIT / (1u64 << 30) as f64
+        )));
+    }
+    if opts.curvatures.len() > MAX_CURVATURES {
+        return Err(invalid(format!(
+            "--curvatures: {} values, at most {MAX_CURVATURES} (each is a load step of the fine \
+             model)",
+            opts.curvatures.len()
+        )));
+    }
     let law = SectionLaw::with_options(strand, scene.law, &scene.section);
     let eps = opts.tension / strand.axial_stiffness();
     let first = law_moment(&law, strand, eps, 1e-9).1;
@@ -152,10 +185,13 @@ pub fn run_bending(
     let start = Instant::now();
     let (curve, _, _) = test
         .run_with_progress(strand, &mut |p| progress(p, p.imposed_curvature / last))
-        .map_err(|e| RunError::Solve {
-            model: "fine".into(),
-            message: format!("bending test: {e}"),
-            dir: opts.out.display().to_string(),
+        .map_err(|e| match e {
+            BendingError::Setup(m) => invalid(format!("bending test: {m}")),
+            e => RunError::Solve {
+                model: "fine".into(),
+                message: format!("bending test: {e}"),
+                dir: opts.out.display().to_string(),
+            },
         })?;
     let wall_time = start.elapsed().as_secs_f64();
 

@@ -190,6 +190,11 @@ pub struct AnalysisFile {
     /// Dynamic, generalized-alpha: spectral radius at infinite frequency in [0, 1].
     #[serde(default)]
     pub spectral_radius: Option<f64>,
+    /// Most time steps a model's run may take (default 10,000,000): a dynamic run that needs
+    /// more is refused before it starts, with the count and an estimate of its time, and the
+    /// fine model's static settling stops after this many. Raise it to run a longer analysis.
+    #[serde(default)]
+    pub max_steps: Option<i64>,
 }
 
 /// Models to run.

@@ -11,9 +11,11 @@ mod scene;
 
 pub use bending::{BendingOptions, BendingSummary, run_bending};
 pub use run::{
-    BeamModelKind, RunError, RunOptions, RunSummary, build_beam, dynamic_options, run_scene,
+    BeamModelKind, Failure, RunError, RunOptions, RunSummary, build_beam, dynamic_options,
+    run_scene,
 };
 pub use scene::{
-    Analysis, BeamModel, Dynamic, End, FineModel, IntegratorKind, MEMORY_LIMIT, Models, Scene,
-    SceneError, Support, SupportKind,
+    Analysis, BeamModel, DEFAULT_MAX_STEPS, Dynamic, End, FineModel, IntegratorKind,
+    MAX_MOTION_ROWS, MAX_POINT_FORCES, MEMORY_LIMIT, Models, Scene, SceneError, Support,
+    SupportKind, beam_memory, fine_memory,
 };

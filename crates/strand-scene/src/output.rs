@@ -5,9 +5,12 @@ use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-/// A CSV file being written: a header, then rows of numbers or text.
+/// A CSV file being written: a header, then rows of numbers or text. A result file never
+/// holds `NaN` or `inf`: a non-finite number is written as an empty field and counted
+/// ([`Csv::blanks`]), so that the run can say so.
 pub struct Csv {
     w: BufWriter<File>,
+    blanks: usize,
 }
 
 impl Csv {
@@ -15,10 +18,11 @@ impl Csv {
     pub fn create(path: &Path, header: &[&str]) -> io::Result<Csv> {
         let mut w = BufWriter::new(File::create(path)?);
         writeln!(w, "{}", header.join(","))?;
-        Ok(Csv { w })
+        Ok(Csv { w, blanks: 0 })
     }
 
-    /// Writes one row of numbers (shortest representation that reads back exactly).
+    /// Writes one row of numbers (shortest representation that reads back exactly; empty for
+    /// a non-finite value).
     pub fn row(&mut self, values: &[f64]) -> io::Result<()> {
         let mut first = true;
         for v in values {
@@ -26,9 +30,18 @@ impl Csv {
                 self.w.write_all(b",")?;
             }
             first = false;
-            write!(self.w, "{}", number(*v))?;
+            if v.is_finite() {
+                write!(self.w, "{}", number(*v))?;
+            } else {
+                self.blanks += 1;
+            }
         }
         self.w.write_all(b"\n")
+    }
+
+    /// Non-finite numbers written as empty fields so far.
+    pub fn blanks(&self) -> usize {
+        self.blanks
     }
 
     /// Writes one row of already formatted fields.
@@ -42,23 +55,38 @@ impl Csv {
     }
 }
 
-/// A number as text that reads back exactly: plain in [1e-4, 1e6), exponent form outside.
+/// A number as text that reads back exactly: plain in [1e-4, 1e6), exponent form outside;
+/// empty for a non-finite value (result files hold no `NaN` or `inf`).
 pub fn number(v: f64) -> String {
     let a = v.abs();
-    if v == 0.0 || (1e-4..1e6).contains(&a) || !v.is_finite() {
+    if !v.is_finite() {
+        String::new()
+    } else if v == 0.0 || (1e-4..1e6).contains(&a) {
         format!("{v}")
     } else {
         format!("{v:e}")
     }
 }
 
-/// Writes a polyline through `points` (m) with per-point scalars as a legacy VTK file.
+/// Writes a polyline through `points` (m) with per-point scalars as a legacy VTK file; a
+/// non-finite value is an error (nothing is written).
 pub fn write_vtk_polyline(
     path: &Path,
     title: &str,
     points: &[[f64; 3]],
     scalars: &[(&str, Vec<f64>)],
 ) -> io::Result<()> {
+    if let Some(bad) = points
+        .iter()
+        .flatten()
+        .chain(scalars.iter().flat_map(|(_, v)| v))
+        .find(|v| !v.is_finite())
+    {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidData,
+            format!("a non-finite value ({bad}) in a VTK frame"),
+        ));
+    }
     let mut w = BufWriter::new(File::create(path)?);
     writeln!(w, "# vtk DataFile Version 3.0")?;
     writeln!(w, "{}", title.replace('\n', " "))?;
@@ -147,6 +175,11 @@ impl FrameFiles {
         }
         self.frame += 1;
         Ok(())
+    }
+
+    /// Non-finite numbers written as empty fields so far.
+    pub fn blanks(&self) -> usize {
+        self.tip.0.blanks() + self.energy.0.blanks()
     }
 
     /// Flushes the CSV files; an error names the file.

@@ -6,6 +6,7 @@
 
 use std::path::Path;
 
+use strand_ancf::beam::{MAX_BENDING_POINTS, pitch_rule_points};
 use strand_core::{
     BaseStiffness, DEFAULT_FRICTION, InputError, LawKind, LayDirection, LayerSpec, Material,
     SectionOptions, StickStiffness, Strand, StrandSpec, WireSpec,
@@ -43,8 +44,22 @@ impl From<InputError> for SceneError {
     }
 }
 
+/// Default of `analysis.max_steps`: the most time steps a model's run may take unless the scene
+/// (or `strand run --max-steps`) asks for more. The bundled scenes take at most about 1.1e6
+/// (the fine model's settling of the Fig. 7 statics).
+pub const DEFAULT_MAX_STEPS: usize = 10_000_000;
+
 /// Largest memory a model may ask for before the scene is refused (bytes).
 pub const MEMORY_LIMIT: f64 = 4.0 * (1u64 << 30) as f64;
+
+/// Most rows a support's motion table (`supports[].motion`) may have: ample for a measured
+/// history sampled every step of a long run, and far below what would weigh on memory (32 B a
+/// row) or on the lookup (a binary search per step).
+pub const MAX_MOTION_ROWS: usize = 1_000_000;
+
+/// Most point forces (`loads.points`) a scene may apply: each is spread over the element (or
+/// segments) around it once, before the run.
+pub const MAX_POINT_FORCES: usize = 100_000;
 
 /// Which end of the strand.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -183,6 +198,8 @@ pub struct Scene {
     pub point_forces: Vec<PointForce>,
     /// Analysis.
     pub analysis: Analysis,
+    /// Most time steps a model's run may take (`analysis.max_steps`).
+    pub max_steps: usize,
     /// Models to run.
     pub models: Models,
     /// The file as parsed (for provenance in result files).
@@ -314,15 +331,20 @@ impl Scene {
                 g
             }
         };
-        let mut point_forces = Vec::new();
-        for (k, p) in file
-            .loads
-            .as_ref()
-            .and_then(|l| l.points.as_ref())
-            .into_iter()
-            .flatten()
-            .enumerate()
-        {
+        let points = file.loads.as_ref().and_then(|l| l.points.as_deref());
+        let points = points.unwrap_or_default();
+        if points.len() > MAX_POINT_FORCES {
+            return Err(SceneError::new(
+                "loads.points",
+                format!(
+                    "{} point forces, more than the {MAX_POINT_FORCES} a scene may apply: add \
+                     the forces that act at one place, or use gravity for a distributed load",
+                    points.len()
+                ),
+            ));
+        }
+        let mut point_forces = Vec::with_capacity(points.len());
+        for (k, p) in points.iter().enumerate() {
             let path = format!("loads.points[{k}]");
             let s = finite(&format!("{path}.s"), p.s)?;
             let length = strand.length();
@@ -356,6 +378,12 @@ impl Scene {
                 }
             }
         }
+        let max_steps = count(
+            "analysis.max_steps",
+            file.analysis.max_steps.unwrap_or(DEFAULT_MAX_STEPS as i64),
+            1,
+            i64::MAX,
+        )?;
         if matches!(analysis, Analysis::Static { .. }) && supports.is_empty() {
             return Err(SceneError::new(
                 "supports",
@@ -387,6 +415,7 @@ impl Scene {
             gravity,
             point_forces,
             analysis,
+            max_steps,
             models,
             file,
         })
@@ -427,7 +456,18 @@ fn motion(path: &str, rows: &[[f64; 4]]) -> Result<Vec<[f64; 4]>, SceneError> {
             "needs at least one row [t, dx, dy, dz]",
         ));
     }
+    if rows.len() > MAX_MOTION_ROWS {
+        return Err(SceneError::new(
+            path,
+            format!(
+                "{} rows, more than the {MAX_MOTION_ROWS} a table may have: sample the motion \
+                 more coarsely (it is interpolated linearly between rows)",
+                rows.len()
+            ),
+        ));
+    }
     let mut last = None;
+    let mut prev = [0.0; 3];
     for (r, row) in rows.iter().enumerate() {
         finite_vec(&format!("{path}[{r}]"), row)?;
         let t = row[0];
@@ -453,7 +493,21 @@ fn motion(path: &str, rows: &[[f64; 4]]) -> Result<Vec<[f64; 4]>, SceneError> {
                  supports)",
             ));
         }
+        // The speed between rows (from rest at t = 0 to the first) must be a number.
+        let (t0, d0) = last.map_or((0.0, [0.0; 3]), |l| (l, prev));
+        if t > t0 && (0..3).any(|c| !((row[c + 1] - d0[c]) / (t - t0)).is_finite()) {
+            return Err(SceneError::new(
+                format!("{path}[{r}]"),
+                format!(
+                    "moves the support at a speed that is not a finite number ({:?} m in \
+                     {:e} s)",
+                    [row[1] - d0[0], row[2] - d0[1], row[3] - d0[2]],
+                    t - t0
+                ),
+            ));
+        }
         last = Some(t);
+        prev = [row[1], row[2], row[3]];
     }
     Ok(rows.to_vec())
 }
@@ -706,11 +760,36 @@ fn analysis(a: &AnalysisFile) -> Result<Analysis, SceneError> {
     }
 }
 
-/// Rough memory of a beam model with `n` elements and `wires` helical wires (bytes): nodal
-/// vectors and banded matrices (~3 KB per element) and section stations (10 points, 48 B per
-/// wire each).
-fn beam_memory(n: usize, wires: usize) -> f64 {
-    n as f64 * (3072.0 + 10.0 * (64.0 + 48.0 * wires as f64))
+/// Memory of a beam model (bytes) with `n` elements, `points` bending points in all and `wires`
+/// helical wires: nodal vectors, band matrices and element data per element; per bending point
+/// its quadrature row, section station (per wire: phase, levers, gains) and the run's copies
+/// of the point states and of the slip state (generalized-alpha keeps one per level of step
+/// cutting). Measured as the largest resident set of `strand run` (`/usr/bin/time -v`) on
+/// generalized-alpha runs with the `hysteretic` law, the most state, of the Table 1 strand
+/// lengthened to 40-800 m: 6.3 KB per element (with one point), and per point 614 B with one
+/// wire, 792 B with 3, 1159 B with 6; the constants below are those plus a quarter.
+pub fn beam_memory(n: usize, points: f64, wires: usize) -> f64 {
+    n as f64 * MEMORY_PER_ELEMENT
+        + points * (MEMORY_PER_POINT + MEMORY_PER_POINT_WIRE * wires as f64)
+}
+
+/// Memory per beam element (bytes).
+const MEMORY_PER_ELEMENT: f64 = 7680.0;
+/// Memory per bending point without wires (bytes).
+const MEMORY_PER_POINT: f64 = 640.0;
+/// Memory per bending point and helical wire (bytes).
+const MEMORY_PER_POINT_WIRE: f64 = 136.0;
+
+/// Memory of a fine model (bytes) with `segments` segments per wire and `wires` wires (core
+/// included): poses, velocities, joints, contacts and the run's copies of the state. Measured
+/// like [`beam_memory`] on the Table 1 strand with 2000 and 8000 segments per wire: 6.2 KB per
+/// segment with one helical wire, 7.1 KB with six; 8 KB is used.
+pub fn fine_memory(segments: usize, wires: usize) -> f64 {
+    segments as f64 * wires as f64 * 8192.0
+}
+
+fn gib(bytes: f64) -> f64 {
+    bytes / (1u64 << 30) as f64
 }
 
 fn beam(
@@ -719,23 +798,51 @@ fn beam(
     strand: &Strand,
     traditional: bool,
 ) -> Result<BeamModel, SceneError> {
-    let elements = count(&format!("{path}.elements"), m.elements, 1, i64::MAX)?;
-    let wires = strand.layer().map_or(0, |l| l.wires());
-    let need = beam_memory(elements, wires);
-    if need > MEMORY_LIMIT {
-        return Err(SceneError::new(
-            format!("{path}.elements"),
-            format!(
-                "{elements} elements would need about {:.1} GiB of memory (limit {:.0} GiB)",
-                need / (1u64 << 30) as f64,
-                MEMORY_LIMIT / (1u64 << 30) as f64
-            ),
-        ));
-    }
+    let field = format!("{path}.elements");
+    let elements = count(&field, m.elements, 1, i64::MAX)?;
     let integration_points = match m.integration_points {
         Some(n) => Some(count(&format!("{path}.integration_points"), n, 1, 10)?),
         None => None,
     };
+    let l = strand.length() / elements as f64;
+    // Bending points per element: the scene's Gauss rule, the pitch rule of the stick/slip
+    // laws (the traditional beam has no wires: 4 points), as `strand_ancf::beam` builds them.
+    let per_element = match (integration_points, strand.layer()) {
+        (Some(n), _) => n as f64,
+        (None, Some(layer)) if !traditional => pitch_rule_points(l, layer.pitch),
+        _ => 4.0,
+    };
+    if integration_points.is_none() && per_element > MAX_BENDING_POINTS as f64 {
+        let pitch = strand.layer().map_or(f64::NAN, |l| l.pitch);
+        return Err(SceneError::new(
+            field,
+            format!(
+                "{elements} element(s) of {l:.4e} m each span {:.4e} wire pitches (P = {pitch:.4e} \
+                 m); the pitch rule puts 3 bending points on every quarter pitch, {per_element:.4e} \
+                 per element, above the cap of {MAX_BENDING_POINTS}: use at least {:.0} elements",
+                l / pitch,
+                (elements as f64 * per_element / MAX_BENDING_POINTS as f64).ceil()
+            ),
+        ));
+    }
+    let wires = if traditional {
+        0
+    } else {
+        strand.layer().map_or(0, |l| l.wires())
+    };
+    let points = elements as f64 * per_element;
+    let need = beam_memory(elements, points, wires);
+    if need > MEMORY_LIMIT {
+        return Err(SceneError::new(
+            field,
+            format!(
+                "{elements} elements with {per_element} bending points each ({points:.4e} in all, \
+                 {wires} wires) would need about {:.1} GiB of memory (limit {:.0} GiB)",
+                gib(need),
+                gib(MEMORY_LIMIT)
+            ),
+        ));
+    }
     let mass_per_length = match m.mass_per_length {
         Some(_) if !traditional => {
             return Err(SceneError::new(
@@ -757,14 +864,15 @@ fn fine(m: &FineModelFile, strand: &Strand) -> Result<FineModel, SceneError> {
     let p = "models.fine.segments_per_wire";
     let segments_per_wire = count(p, m.segments_per_wire, 2, i64::MAX)?;
     let wires = 1 + strand.layer().map_or(0, |l| l.wires());
-    // Poses, velocities, joint and contact data: about 2 KB per segment.
-    let need = segments_per_wire as f64 * wires as f64 * 2048.0;
+    let need = fine_memory(segments_per_wire, wires);
     if need > MEMORY_LIMIT {
         return Err(SceneError::new(
             p,
             format!(
-                "{segments_per_wire} segments per wire would need about {:.1} GiB of memory",
-                need / (1u64 << 30) as f64
+                "{segments_per_wire} segments per wire ({wires} wires) would need about {:.1} GiB \
+                 of memory (limit {:.0} GiB)",
+                gib(need),
+                gib(MEMORY_LIMIT)
             ),
         ));
     }

@@ -384,3 +384,92 @@ fn planar_only_if_everything_stays_in_the_plane() {
     let h = 0.5f64.sqrt();
     assert!((s[0] + h).abs() < 1e-15 && s[1] == 0.0 && (s[2] - h).abs() < 1e-15);
 }
+
+/// Counts from the scene follow the rules the models build with. The pitch rule puts 3
+/// bending points on every quarter pitch (P = 0.0432 m here): one element of 1e5 m would ask
+/// for 2.78e7 points, above the cap per element; 10,000 elements of 10 m stay under the cap
+/// (2781 each) but need about 43 GiB together. The traditional beam (4 points per element)
+/// takes the same strand in one element.
+#[test]
+fn counts_follow_the_pitch_rule_and_its_cap() {
+    let mut s = good();
+    s["strand"]["length"] = json!(1e5);
+    s["models"] = json!({ "equivalent": { "elements": 1 } });
+    let e = Scene::parse(&s.to_string()).unwrap_err();
+    assert_path(&e, "models.equivalent.elements");
+    assert!(
+        e.message.contains("2.7805e7 per element") && e.message.contains("use at least 9052"),
+        "{e}"
+    );
+    s["models"] = json!({ "equivalent": { "elements": 10000 } });
+    let e = Scene::parse(&s.to_string()).unwrap_err();
+    assert_path(&e, "models.equivalent.elements");
+    assert!(
+        e.message.contains("2.7810e7 in all") && e.message.contains("GiB"),
+        "{e}"
+    );
+    s["models"] = json!({ "traditional": { "elements": 1 } });
+    Scene::parse(&s.to_string()).unwrap();
+    assert_path(
+        &reject("/analysis/load_steps", json!(-3)),
+        "analysis.load_steps",
+    );
+    let mut s = good();
+    s["analysis"]["max_steps"] = json!(0);
+    assert_path(
+        &Scene::parse(&s.to_string()).unwrap_err(),
+        "analysis.max_steps",
+    );
+    s["analysis"]["max_steps"] = json!(50_000_000);
+    assert_eq!(Scene::parse(&s.to_string()).unwrap().max_steps, 50_000_000);
+}
+
+/// The tables of the 3D fields are bounded too: a support's motion table and the point forces
+/// have a largest count, and a motion table may not move its support at an infinite speed
+/// (rows so close in time that the slope overflows).
+#[test]
+fn motion_tables_and_point_forces_are_bounded() {
+    let rows = strand_scene::MAX_MOTION_ROWS + 1;
+    let table: Vec<Value> = (1..=rows)
+        .map(|k| json!([k as f64 * 1e-3, 0.0, 0.0, 0.0]))
+        .collect();
+    let e =
+        Scene::parse(&with(dynamic(), "/supports/0/motion", json!(table)).to_string()).unwrap_err();
+    assert_path(&e, "supports[0].motion");
+    assert!(e.message.contains("1000001 rows"), "{e}");
+    let forces = strand_scene::MAX_POINT_FORCES + 1;
+    let points: Vec<Value> = (0..forces)
+        .map(|_| json!({"s": 0.1, "force": [0.0, 1.0, 0.0]}))
+        .collect();
+    let e = Scene::parse(&with(dynamic(), "/loads/points", json!(points)).to_string()).unwrap_err();
+    assert_path(&e, "loads.points");
+    assert!(e.message.contains("100001 point forces"), "{e}");
+    // 1 m in 1e-310 s from rest, and 1e300 m in 1e-10 s after a row.
+    reject_in(
+        with(
+            dynamic(),
+            "/supports/0/motion",
+            json!([[1e-310, 1.0, 0.0, 0.0]]),
+        ),
+        "supports[0].motion[0]",
+        "speed",
+    );
+    reject_in(
+        with(
+            dynamic(),
+            "/supports/0/motion",
+            json!([
+                [0.0, 0.0, 0.0, 0.0],
+                [0.1, 0.0, 0.0, 0.0],
+                [0.1 + 1e-10, 0.0, 1e300, 0.0]
+            ]),
+        ),
+        "supports[0].motion[2]",
+        "speed",
+    );
+    // At the bounds they parse.
+    let table: Vec<Value> = (1..rows)
+        .map(|k| json!([k as f64 * 1e-3, 0.0, 1e-6, 0.0]))
+        .collect();
+    Scene::parse(&with(dynamic(), "/supports/0/motion", json!(table)).to_string()).unwrap();
+}

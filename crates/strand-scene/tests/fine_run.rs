@@ -67,15 +67,18 @@ fn measured_moment_curvature_and_stiffness_follow_beam_theory() {
         (-y / tip - 1.0).abs() < 0.01,
         "tip {y:e} m against q L^4 / 8 EI = {tip:e} m"
     );
-    // Root moment: the weight's moment about the clamp, q L^2 / 2.
+    // Root moment: the weight's moment about the clamp, q L^2 / 2, signed like the curvature
+    // (the hanging cantilever bends with its convex side toward +y: both negative, as in the
+    // beams' files).
     let m0 = c["moment"][0];
     assert!(
-        (m0 / (0.5 * q * l * l) - 1.0).abs() < 1e-3,
+        (m0 / (-0.5 * q * l * l) - 1.0).abs() < 1e-3,
         "root moment {m0:e} against {:e}",
-        0.5 * q * l * l
+        -0.5 * q * l * l
     );
     for (i, s) in c["s"].iter().enumerate() {
-        let m = q * (l - s).powi(2) / 2.0;
+        let m = -q * (l - s).powi(2) / 2.0;
+        assert!(c["curvature"][i] <= 0.0, "curvature at s = {s}");
         // Moment from the far part's weight, exact up to the small deflection.
         assert!(
             (c["moment"][i] - m).abs() < 2e-3 * 0.5 * q * l * l,

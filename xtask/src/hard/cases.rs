@@ -17,11 +17,11 @@ use strand_ancf::statics::{StaticOptions, solve_static};
 use strand_core::{LawKind, SectionLaw};
 use strand_scene::format::SceneFile;
 use strand_scene::{
-    BeamModelKind, RunError, RunOptions, Scene, build_beam, dynamic_options, run_scene,
+    BeamModelKind, Failure, RunOptions, Scene, build_beam, dynamic_options, run_scene,
 };
 
 use super::{Ctx, probe};
-use crate::validate::report::Row;
+use crate::validate::report::{Row, worse, worst};
 
 /// What a dynamic run saw over its output frames.
 #[derive(Debug, Clone, Default)]
@@ -247,10 +247,10 @@ pub fn steel_verlet_forced_step(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
         out: ctx.out.clone(),
         vtk: false,
     };
-    let message = match run_scene(&scene, &opts, &mut |_, _| {}) {
-        Ok(_) => bail!("the run at a step above the stable step did not stop"),
-        Err(e) => e.to_string(),
-    };
+    let message = run_scene(&scene, &opts, &mut |_, _| {})?
+        .iter()
+        .find_map(|s| s.failure())
+        .ok_or_else(|| anyhow::anyhow!("the run at a step above the stable step did not stop"))?;
     let named = number_after(&message, "estimated stable step ")
         .map_or(f64::INFINITY, |v| (v - stable).abs() / stable);
     let status = summary_status(&ctx.out.join("equivalent"))?;
@@ -410,7 +410,7 @@ pub fn stick_slip_chatter(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
     let (kc_min, kc_max) = kc
         .iter()
         .fold((f64::INFINITY, 0.0f64), |(a, b), &c| (a.min(c), b.max(c)));
-    let amp = h.root.iter().map(|r| r.2.abs()).fold(0.0, f64::max);
+    let amp = worst(h.root.iter().map(|r| r.2.abs()));
     let switches = h
         .root
         .windows(2)
@@ -754,8 +754,8 @@ pub fn rigid_rotation(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
             let ev = evaluate(&beam, &arc(&beam, 0.0, 0.0, theta, axis))
                 .with_context(|| format!("{name} at {theta} rad"))?;
             angles += 1;
-            force = force.max(ev.force.iter().fold(0.0, |a, f| a.max(f.abs() / ea)));
-            energy = energy.max(ev.energy.abs());
+            force = worse(force, worst(ev.force.iter().map(|f| f.abs() / ea)));
+            energy = worse(energy, ev.energy.abs());
             for p in &ev.points {
                 strain = strain.max(p.eps.abs());
                 curvature = curvature.max(p.kappa.hypot(p.kappa_y));
@@ -795,7 +795,7 @@ pub fn long_run_100s(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
     let scale = s.max_kinetic.max(f64::MIN_POSITIVE);
     let (e0, e1) = h.total_ends();
     // Energy put in by the integrator: the largest rise of the total above its start.
-    let rise = h.totals.iter().map(|(_, e)| e - e0).fold(0.0, f64::max) / scale;
+    let rise = worst(h.totals.iter().map(|(_, e)| e - e0)) / scale;
     // Drift over the last tenth of the run: a bounded drift has settled by then.
     let end = h.totals.last().map_or(0.0, |p| p.0);
     let late = h
@@ -879,15 +879,15 @@ pub fn paper_law_statics(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
         };
         let r = run_scene(&scene, &opts, &mut |_, f| ctx.progress(name, f));
         worst = worst.max(t.elapsed().as_secs_f64());
-        match r {
-            Ok(s) => notes.push(format!(
+        let s = r?;
+        match s[0].failure() {
+            None => notes.push(format!(
                 "{name}: converged, {} load steps, {} Newton iterations, {}",
                 s[0].steps,
                 s[0].newton_iterations,
                 s[0].warnings.join("; ")
             )),
-            Err(e) => {
-                let m = e.to_string();
+            Some(m) => {
                 named &= diagnosis_named(&m);
                 notes.push(format!("{name}: stopped: {m}"));
             }
@@ -938,10 +938,14 @@ pub fn non_finite_stop(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
         out: ctx.out.clone(),
         vtk: false,
     };
-    let message = match run_scene(&scene, &opts, &mut |_, _| {}) {
-        Ok(_) => bail!("the run with gravity 1e300 m/s^2 did not stop"),
-        Err(RunError::Solve { message, .. }) => message,
-        Err(e) => bail!("the run failed before solving: {e}"),
+    let summaries = run_scene(&scene, &opts, &mut |_, _| {})?;
+    let message = match summaries.first() {
+        Some(s) if s.reason == Some(Failure::NonFinite) => s.error.clone().unwrap_or_default(),
+        Some(s) if s.failed() => bail!(
+            "the run failed for another reason than a non-finite value: {}",
+            s.failure().unwrap_or_default()
+        ),
+        _ => bail!("the run with gravity 1e300 m/s^2 did not stop"),
     };
     let named = ["(step ", "t = ", "non-finite", "element ", "x = "]
         .iter()

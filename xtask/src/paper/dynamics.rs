@@ -5,6 +5,7 @@ use super::report::{Finding, Verdict, sci};
 use super::{Figures, SceneRun};
 use crate::pareto::metrics::Tip;
 use crate::plot::{Chart, Mark, Series};
+use crate::validate::report::worst;
 use crate::validate::results::Energy;
 
 /// Time (s) of the first frame where `v` changes sign from positive, by linear interpolation.
@@ -46,7 +47,7 @@ fn span(v: &[f64]) -> f64 {
 }
 
 fn largest_abs(v: &[f64]) -> f64 {
-    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+    worst(v.iter().map(|x| x.abs()))
 }
 
 fn better(ok: bool) -> Verdict {
@@ -109,11 +110,7 @@ pub fn figures(run: &SceneRun, figs: &mut Figures) -> anyhow::Result<Vec<Finding
     )?;
 
     let d = eq.distance_to(&tr);
-    let early = d
-        .iter()
-        .filter(|p| p.0 <= 0.1 + 1e-9)
-        .map(|p| p.1)
-        .fold(0.0, f64::max);
+    let early = worst(d.iter().filter(|p| p.0 <= 0.1 + 1e-9).map(|p| p.1));
     findings.push(Finding::new(
         "Fig. 14(a)",
         "within 0.1 s the tip displacements of the two models mostly agree",

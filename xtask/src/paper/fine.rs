@@ -8,6 +8,7 @@ use super::{Figures, SceneRun};
 use crate::pareto::metrics::Tip;
 use crate::plot::{Chart, Mark, Series};
 use crate::validate::checks::{self, BeamKind};
+use crate::validate::report::{worse, worst};
 use crate::validate::results::{Centerline, Energy, Table};
 
 /// The paper's position error between its equivalent and fine models in statics (Fig. 7,
@@ -107,7 +108,7 @@ pub fn fig7(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Findin
                 ));
                 let p = profile(&eq, |s| fine.position(s));
                 let (d, at) = largest(&p);
-                worst = worst.max(d);
+                worst = worse(worst, d);
                 ours.push(format!("g = {g}: {} m at s = {at:.3} m", sci(d)));
                 let k_min = run
                     .scene
@@ -273,19 +274,14 @@ pub fn fig8(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Findin
                 let d = eq.distance_to(&t);
                 format!(
                     "for scale, equivalent vs traditional tip distance up to {} m",
-                    sci(d.iter().map(|p| p.1).fold(0.0, f64::max))
+                    sci(worst(d.iter().map(|p| p.1)))
                 )
             })
             .unwrap_or_default();
         match &fine {
             Some(f) => {
                 let d = eq.distance_to(f);
-                let upto = |t1: f64| {
-                    d.iter()
-                        .filter(|p| p.0 <= t1 + 1e-9)
-                        .map(|p| p.1)
-                        .fold(0.0, f64::max)
-                };
+                let upto = |t1: f64| worst(d.iter().filter(|p| p.0 <= t1 + 1e-9).map(|p| p.1));
                 let (e02, e05) = (upto(0.2), upto(0.5));
                 let dissipated = |d: std::path::PathBuf| {
                     Energy::load(&d).map_or("-".to_string(), |e| sci(e.last()[3]))

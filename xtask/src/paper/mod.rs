@@ -132,11 +132,18 @@ pub(crate) fn run_into(
             bar.set_position(base + (done * 999.0) as u64);
         };
         out.push(match run_scene(&single, &opts, &mut progress) {
-            Ok(mut s) => Outcome {
-                model: model.to_string(),
-                summary: s.pop(),
-                error: None,
-            },
+            Ok(mut s) => {
+                let summary = s.pop();
+                let error = summary
+                    .as_ref()
+                    .and_then(|s| s.failure())
+                    .map(|e| format!("{e} (results so far in {})", dir.join(model).display()));
+                Outcome {
+                    model: model.to_string(),
+                    summary,
+                    error,
+                }
+            }
             Err(e) => Outcome {
                 model: model.to_string(),
                 summary: None,

@@ -91,7 +91,11 @@ pub(crate) fn load_wires(dir: &Path) -> anyhow::Result<Vec<WireRow>> {
                     s: f[0].parse()?,
                     wire: f[1].parse()?,
                     phase: f[2].parse()?,
-                    critical: f[3].parse()?,
+                    // Empty for a wire without lever: it never slips.
+                    critical: match f[3] {
+                        "" => f64::INFINITY,
+                        c => c.parse()?,
+                    },
                     slip: match f[4] {
                         "slip" => true,
                         "stick" => false,

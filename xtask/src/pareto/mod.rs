@@ -25,6 +25,7 @@ use strand_scene::{Analysis, Scene};
 use crate::paper::{copy_to_docs, load_scene, run_into};
 use crate::validate::checks::{self, BeamKind};
 use crate::validate::machine::Provenance;
+use crate::validate::report::worst;
 use crate::validate::results::Centerline;
 use crate::validate::{progress_bar, repo_root};
 use metrics::{Tip, median};
@@ -368,10 +369,11 @@ pub fn run(args: &ParetoArgs) -> anyhow::Result<()> {
                 continue;
             };
             let model_dir = run_dir.join(c.model.name());
-            let (error, mut note) = match measure(&reference, &model_dir, summary.tip) {
-                Ok(e) => (e, String::new()),
-                Err(e) => (f64::NAN, format!("{e:#}")),
-            };
+            let (error, mut note) =
+                match measure(&reference, &model_dir, summary.tip.unwrap_or([f64::NAN; 3])) {
+                    Ok(e) => (e, String::new()),
+                    Err(e) => (f64::NAN, format!("{e:#}")),
+                };
             if times.len() < repeats {
                 note = format!("timed once (longer than {LONG_RUN_S} s) {note}");
             }
@@ -477,10 +479,7 @@ fn reference(
                 }
                 tips.push(Tip::load(&sub.join("equivalent"))?);
             }
-            let self_error = tips[1]
-                .distance_to(&tips[0])
-                .iter()
-                .fold(0.0, |m: f64, p| m.max(p.1));
+            let self_error = worst(tips[1].distance_to(&tips[0]).iter().map(|p| p.1));
             let note = format!(
                 "the equivalent model with {n} elements, Stoermer-Verlet at its estimated stable \
                  step, frames every {:.0e} s, interpolated by cubic Hermite at each run's output \
@@ -504,7 +503,7 @@ fn measure(reference: &Reference, dir: &std::path::Path, tip: [f64; 3]) -> anyho
             if d.is_empty() {
                 anyhow::bail!("no output time inside the reference's span");
             }
-            Ok(d.iter().fold(0.0, |m: f64, p| m.max(p.1)))
+            Ok(worst(d.iter().map(|p| p.1)))
         }
     }
 }

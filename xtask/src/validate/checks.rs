@@ -60,13 +60,13 @@ pub fn distance(c: &Centerline, tip: [f64; 3], r: &Solution) -> Distance {
         let p = r.position(c.s[i]);
         // The elastica is planar: a point off the XY plane is off by its z too.
         let d = (c.x[i] - p[0]).hypot(c.y[i] - p[1]).hypot(c.z[i]);
-        if d > max {
+        if d.is_nan() || d > max {
             (max, at) = (d, c.s[i]);
         }
         sum += d * d;
     }
     let tip = (tip[0] - r.tip[0]).hypot(tip[1] - r.tip[1]).hypot(tip[2]);
-    if tip > max {
+    if tip.is_nan() || tip > max {
         (max, at) = (tip, r.problem.length);
     }
     Distance {

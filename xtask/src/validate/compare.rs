@@ -7,7 +7,7 @@ use std::path::Path;
 
 use anyhow::{Context, bail};
 
-use super::report::{Bound, Row};
+use super::report::{Bound, Row, worse, worst};
 use super::results::{Centerline, Energy, Table, summary};
 use super::tolerances::DistanceTol;
 
@@ -44,7 +44,7 @@ pub fn compare(a: &Path, b: &Path, dynamic: bool) -> anyhow::Result<Comparison> 
             continue;
         }
         let d = dist(ca.point(i), cb.position(ca.s[i]));
-        max = max.max(d);
+        max = worse(max, d);
         sum += d * d;
         count += 1;
     }
@@ -54,7 +54,7 @@ pub fn compare(a: &Path, b: &Path, dynamic: bool) -> anyhow::Result<Comparison> 
     let (ta, tb) = (summary_tip(a)?, summary_tip(b)?);
     let tip = dist(ta, tb);
     let mut c = Comparison {
-        max: max.max(tip),
+        max: worse(max, tip),
         rms: (sum / count as f64).sqrt(),
         tip,
         tip_over_time: None,
@@ -82,15 +82,10 @@ pub fn compare(a: &Path, b: &Path, dynamic: bool) -> anyhow::Result<Comparison> 
                 sa - sb,
             ];
             for (m, v) in diff.iter_mut().zip(d) {
-                *m = m.max(v.abs());
+                *m = worse(*m, v.abs());
             }
         }
-        let kmax = ea
-            .kinetic
-            .iter()
-            .chain(&eb.kinetic)
-            .copied()
-            .fold(0.0, f64::max);
+        let kmax = worst(ea.kinetic.iter().chain(&eb.kinetic).copied());
         c.energy = Some((diff, kmax));
     }
     Ok(c)
@@ -153,7 +148,7 @@ fn tip_over_time(a: &Path, b: &Path) -> anyhow::Result<(f64, f64)> {
             [ta[1][i], ta[2][i], ta[3][i]],
             [tb[1][j], tb[2][j], tb[3][j]],
         );
-        max = max.max(d);
+        max = worse(max, d);
         sum += d * d;
     }
     Ok((max, (sum / pairs.len() as f64).sqrt()))

@@ -9,7 +9,7 @@ use anyhow::Context;
 use serde::{Deserialize, Serialize};
 
 use super::machine::Provenance;
-use super::report::{Bound, Row};
+use super::report::{Bound, Row, worse, worst};
 use super::results::{Centerline, Energy};
 use super::tolerances::GoldenTol;
 
@@ -192,7 +192,7 @@ pub fn compare(
             } else {
                 distance(&a[1..], &b[1..])
             };
-            dp = dp.max(d);
+            dp = worse(dp, d);
         }
         rows.push(Row::measured(
             scene,
@@ -204,11 +204,7 @@ pub fn compare(
         ));
         match (g.energy_end, c.energy_end) {
             (Some(a), Some(b)) => {
-                let de = a
-                    .iter()
-                    .zip(&b)
-                    .map(|(x, y)| (x - y).abs())
-                    .fold(0.0, f64::max);
+                let de = worst(a.iter().zip(&b).map(|(x, y)| (x - y).abs()));
                 rows.push(Row::measured(
                     scene,
                     CHECK,
@@ -328,6 +324,30 @@ mod tests {
         let rows = compare(&dir, "s", &tol, &snap(1e-3));
         assert_eq!(rows[0].status, Status::Fail);
         assert_eq!(rows[1].status, Status::Pass);
+        // A NaN anywhere fails its comparison (`f64::max` would drop it and pass).
+        let rows = compare(&dir, "s", &tol, &snap(f64::NAN));
+        assert_eq!(rows[0].status, Status::Fail);
+        for (i, energy) in [(0, false), (1, false), (0, true)] {
+            let mut bad = snap(0.0);
+            let m = bad.get_mut("equivalent").unwrap();
+            if energy {
+                m.energy_end.as_mut().unwrap()[2] = f64::NAN;
+            } else {
+                m.centerline[0][1 + i] = f64::NAN;
+            }
+            let rows = compare(&dir, "s", &tol, &bad);
+            let failed = rows.iter().filter(|r| r.status == Status::Fail).count();
+            assert_eq!(failed, 1, "{rows:?}");
+        }
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn nan_is_the_worst_value() {
+        use crate::validate::report::{worse, worst};
+        assert!(worse(1.0, f64::NAN).is_nan() && worse(f64::NAN, 1.0).is_nan());
+        assert!(worst([0.1, f64::NAN, 3.0]).is_nan());
+        assert_eq!(worst([0.1, 3.0, 2.0]), 3.0);
+        assert_eq!(worst([]), 0.0);
     }
 }

@@ -230,7 +230,13 @@ impl SceneRun<'_> {
             bar.set_message(format!("{tag} {label} {model}"));
             bar.set_position(base + (f.clamp(0.0, 1.0) * 999.0) as u64);
         };
-        run_scene(&scene, &opts, &mut progress).map_err(|e| anyhow::anyhow!("{e}"))
+        let summaries =
+            run_scene(&scene, &opts, &mut progress).map_err(|e| anyhow::anyhow!("{e}"))?;
+        // A model that failed fails the scene's checks, with the runner's reason.
+        if let Some(e) = summaries.iter().find_map(|s| s.failure()) {
+            anyhow::bail!("{e} (results so far in {})", dir.display());
+        }
+        Ok(summaries)
     }
 
     fn validate(&self, specs: &[&CheckSpec]) -> Vec<Row> {
@@ -309,7 +315,7 @@ impl SceneRun<'_> {
                     self.scene,
                     kind,
                     &self.out.join(kind.name()),
-                    s.tip,
+                    s.tip.unwrap_or([f64::NAN; 3]),
                     &reference,
                     t,
                 ));
@@ -357,7 +363,7 @@ impl SceneRun<'_> {
                 for s in summaries.iter().filter(|s| s.model != "fine") {
                     match golden::ModelSnapshot::take(
                         &self.out.join(&s.model),
-                        s.tip,
+                        s.tip.unwrap_or([f64::NAN; 3]),
                         length,
                         dynamic,
                     ) {
@@ -509,7 +515,11 @@ impl SceneRun<'_> {
                 Ok(c) => c,
                 Err(e) => return fail(format!("{e:#}")),
             };
-            errors.push(checks::distance(&c, summary[0].tip, &reference));
+            errors.push(checks::distance(
+                &c,
+                summary[0].tip.unwrap_or([f64::NAN; 3]),
+                &reference,
+            ));
         }
         let order = checks::observed_order(errors[1].max, errors[2].max);
         let e = &t.elements;
@@ -559,8 +569,7 @@ impl SceneRun<'_> {
                 Err(e) => return fail(format!("{e:#}")),
             }
         }
-        let largest =
-            |a: &Tip, b: &Tip| a.distance_to(b).iter().fold(0.0f64, |m, &(_, d)| m.max(d));
+        let largest = |a: &Tip, b: &Tip| report::worst(a.distance_to(b).iter().map(|&(_, d)| d));
         let (d1, d2) = (largest(&tips[0], &tips[1]), largest(&tips[1], &tips[2]));
         let order = checks::observed_order(d1, d2);
         let h = &t.time_steps;

@@ -186,6 +186,21 @@ fn margin(value: f64, bound: Bound) -> Option<f64> {
     }
 }
 
+/// The larger of `a` and `b`, NaN if either is: unlike `f64::max`, which returns the other
+/// value, it keeps a NaN, so that a NaN result fails the check it enters.
+pub fn worse(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.max(b)
+    }
+}
+
+/// The largest of `values` (0 for none), NaN if any is NaN (see [`worse`]).
+pub fn worst(values: impl IntoIterator<Item = f64>) -> f64 {
+    values.into_iter().fold(0.0, worse)
+}
+
 fn unit_suffix(unit: &str) -> String {
     if unit.is_empty() {
         String::new()

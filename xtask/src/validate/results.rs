@@ -4,6 +4,8 @@ use std::path::Path;
 
 use anyhow::{Context, bail};
 
+use super::report::worst;
+
 /// A numeric CSV file with a header row.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Table {
@@ -14,7 +16,8 @@ pub struct Table {
 }
 
 impl Table {
-    /// Parses CSV text whose every field after the header is a number.
+    /// Parses CSV text whose every field after the header is a number; an empty field (a
+    /// value the run could not give) reads as NaN, which fails any check it enters.
     pub fn parse(text: &str) -> anyhow::Result<Table> {
         let mut lines = text.lines().filter(|l| !l.trim().is_empty());
         let header: Vec<String> = lines
@@ -27,7 +30,10 @@ impl Table {
         for (i, line) in lines.enumerate() {
             let row = line
                 .split(',')
-                .map(|f| f.trim().parse::<f64>())
+                .map(|f| match f.trim() {
+                    "" => Ok(f64::NAN),
+                    f => f.parse::<f64>(),
+                })
                 .collect::<Result<Vec<f64>, _>>()
                 .with_context(|| format!("row {}: not a number", i + 2))?;
             if row.len() != header.len() {
@@ -178,12 +184,8 @@ impl Energy {
     /// energy.
     pub fn balance_relative(&self) -> f64 {
         let e0 = self.total[0];
-        let err = self
-            .total
-            .iter()
-            .map(|e| (e - e0).abs())
-            .fold(0.0, f64::max);
-        let kmax = self.kinetic.iter().copied().fold(0.0, f64::max);
+        let err = worst(self.total.iter().map(|e| (e - e0).abs()));
+        let kmax = worst(self.kinetic.iter().copied());
         err / kmax.max(f64::MIN_POSITIVE)
     }
 

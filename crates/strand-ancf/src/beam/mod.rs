@@ -14,7 +14,7 @@
 //! * `assembly`: the global elastic force and tangent from the element contributions;
 //! * `strain_recovery`: the strain the section law reads, from the element means;
 //! * `planar_element`, `spatial_element`: one element's forces and tangent;
-//! * `sampling`: position and slope at any material coordinate.
+//! * `sampling`: position, slope, strain and curvature at any material coordinate.
 //!
 //! # Quadrature
 //!
@@ -30,7 +30,8 @@
 //! * Bending term: the wire phases turn once per pitch P, and each wire switches between stick
 //!   and slip inside an element longer than P/2, so the default rule is composite: 3 Gauss points
 //!   on each of `ceil(4 l / P)` equal sub-intervals (a sub-interval spans at most a quarter
-//!   pitch). Laws without wires use 4 Gauss points. A scene can ask for n Gauss points instead.
+//!   pitch), at most [`MAX_BENDING_POINTS`] per element. Laws without wires use 4 Gauss points.
+//!   A scene can ask for n Gauss points instead.
 
 mod assembly;
 mod inertia;
@@ -54,6 +55,8 @@ use crate::spatial::{SectionFrame, SpatialCoords, default_phase_reference};
 
 pub use loads::PointLoad;
 pub(crate) use quadrature::{BendPoint, ElementRule};
+pub use quadrature::{MAX_BENDING_POINTS, pitch_rule_points};
+pub use sampling::SectionSample;
 pub use supports::SupportMotion;
 
 /// Which cable element a beam uses.

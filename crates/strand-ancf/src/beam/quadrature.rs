@@ -30,6 +30,24 @@ pub(crate) struct ElementRule {
     pub others: [usize; 2],
 }
 
+/// Most bending points the pitch rule may put in one element: 1024 quarter pitches (an
+/// element spanning 256 pitches). A cubic element's curvature cannot follow the strand over
+/// more; more elements resolve the same points better.
+pub const MAX_BENDING_POINTS: usize = 3 * 1024;
+
+/// Bending points the pitch rule puts in an element of length `l` (m) for the wire pitch
+/// `pitch` (m): 3 Gauss points on each of `ceil(4 l / P)` sub-intervals. Computed in floating
+/// point so that it cannot overflow; compare with [`MAX_BENDING_POINTS`] before building.
+pub fn pitch_rule_points(l: f64, pitch: f64) -> f64 {
+    3.0 * (4.0 * l / pitch).ceil().max(1.0)
+}
+
+/// Fewest elements, from `n` elements asking for `points` bending points each, that keep the
+/// pitch rule within [`MAX_BENDING_POINTS`].
+fn min_elements(n: usize, points: f64) -> f64 {
+    (n as f64 * points / MAX_BENDING_POINTS as f64).ceil()
+}
+
 /// Bending integration points of element `e`: the pitch rule or the scene's Gauss rule.
 pub(super) fn element_rule(
     law: &SectionLaw,
@@ -47,7 +65,17 @@ pub(super) fn element_rule(
             pts.extend(rule.on_interval(0.0, l));
         }
         (None, Some(layer)) if law.sliders() > 0 => {
-            let sub = ((4.0 * l / layer.pitch).ceil() as usize).max(1);
+            let points = pitch_rule_points(l, layer.pitch);
+            if points > MAX_BENDING_POINTS as f64 {
+                return Err(BeamError::Setup(format!(
+                    "elements of {l:.4e} m span {:.4e} wire pitches: the pitch rule asks for \
+                     {points:.4e} bending points per element, above the cap of \
+                     {MAX_BENDING_POINTS}; use at least {} elements",
+                    l / layer.pitch,
+                    min_elements(spec.elements, points)
+                )));
+            }
+            let sub = points as usize / 3;
             let rule = gauss_legendre(3).map_err(setup)?;
             let h = l / sub as f64;
             for k in 0..sub {

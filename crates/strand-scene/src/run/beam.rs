@@ -4,18 +4,24 @@
 use std::path::Path;
 use std::time::Instant;
 
+use strand_ancf::band::BandMatrix;
 use strand_ancf::beam::{
-    Beam, BeamSpec, ElementKind, PointLoad, PointState, Support as BeamSupport, SupportMotion,
+    Beam, BeamError, BeamSpec, ElementKind, PointLoad, PointState, Support as BeamSupport,
+    SupportMotion,
 };
-use strand_ancf::dynamics::{DynamicOptions, Scheme, run_dynamic_from};
+use strand_ancf::dynamics::{DynamicError, DynamicOptions, Scheme, run_dynamic_from, stable_step};
 use strand_ancf::initial::InitialState;
-use strand_ancf::statics::{StaticOptions, solve_static};
-use strand_core::{LawKind, SectionLaw, WireState};
+use strand_ancf::statics::{StaticError, StaticOptions, solve_static};
+use strand_core::{LawKind, SectionLaw};
 
-use crate::output::{Csv, FrameFiles, number, write_vtk_polyline};
+use crate::output::FrameFiles;
 use crate::scene::{Analysis, BeamModel, End, IntegratorKind, Scene, SupportKind};
 
-use super::record::{BALANCE_WARNING, RunError, RunOptions, RunSummary, finish, io_err};
+use super::beam_state;
+use super::budget;
+use super::record::{
+    BALANCE_WARNING, Failure, RunError, RunOptions, RunSummary, Stop, finish, io_err,
+};
 
 fn beam_support(scene: &Scene, end: End) -> Option<BeamSupport> {
     scene
@@ -138,10 +144,25 @@ pub(crate) fn run_beam(
     opts: &RunOptions,
     progress: &mut dyn FnMut(&str, f64),
 ) -> Result<RunSummary, RunError> {
-    let beam = beam_of(scene, name, model, kind)?;
-    let law = beam.law();
     let dir = opts.out.join(name);
+    let analysis = match scene.analysis {
+        Analysis::Static { .. } => "static",
+        Analysis::Dynamic(_) => "dynamic",
+    };
+    let mut summary = RunSummary::start(&scene.name, name, kind.name(), analysis);
+    summary.elements = model.elements;
     std::fs::create_dir_all(&dir).map_err(io_err(&dir))?;
+    let beam = match beam_of(scene, name, model, kind) {
+        Ok(b) => b,
+        Err(e) => {
+            let message = match e {
+                RunError::Setup { message, .. } => message,
+                other => other.to_string(),
+            };
+            return finish(summary, Err(Stop::new(Failure::Setup, message)), &dir);
+        }
+    };
+    let law = beam.law();
     let element = match beam.spec().element {
         ElementKind::Planar => "planar ANCF cable beam in the XY plane (4 coordinates per node)",
         ElementKind::Spatial => {
@@ -149,64 +170,41 @@ pub(crate) fn run_beam(
              spin about the tangent, committed with every accepted step"
         }
     };
-    let mut built = vec![
-        format!(
-            "{element}, {} elements of {:.4e} m, {} bending points and 2 axial points per element",
-            model.elements,
-            beam.element_length(),
-            beam.bending_points()
-        ),
-        format!("section law `{kind}`"),
-    ];
+    summary.built.push(format!(
+        "{element}, {} elements of {:.4e} m, {} bending points and 2 axial points per element",
+        model.elements,
+        beam.element_length(),
+        beam.bending_points()
+    ));
+    summary.built.push(format!("section law `{kind}`"));
     if beam.spec().element == ElementKind::Spatial && law.sliders() > 0 {
         let r = scene.phase_reference;
-        built.push(format!(
+        summary.built.push(format!(
             "wire phases measured from ({:.4}, {:.4}, {:.4}) at x = 0",
             r[0], r[1], r[2]
         ));
     }
     if !scene.point_forces.is_empty() {
-        built.push(format!(
+        summary.built.push(format!(
             "{} point force(s), constant",
             scene.point_forces.len()
         ));
     }
     if beam.has_moving_supports() {
-        built.push(
+        summary.built.push(
             "moving supports: the held position follows its table (statics: the last row with \
              the load steps)"
                 .into(),
         );
     }
     if law.sliders() > 0 {
-        built.push(format!(
+        summary.built.push(format!(
             "{} friction sliders per bending point",
             law.sliders()
         ));
     }
-    let mut summary = RunSummary {
-        scene: scene.name.clone(),
-        model: name.to_string(),
-        law: kind.name().to_string(),
-        analysis: String::new(),
-        status: "ok".into(),
-        error: None,
-        dofs: beam.dofs(),
-        elements: model.elements,
-        integration_points: beam.bending_points(),
-        steps: 0,
-        newton_iterations: 0,
-        wall_time_s: 0.0,
-        tip: [f64::NAN; 3],
-        time_step: None,
-        stable_time_step: None,
-        energy_balance_error: None,
-        energy_balance_relative: None,
-        dissipated: None,
-        non_potential_work: None,
-        built,
-        warnings: Vec::new(),
-    };
+    summary.dofs = beam.dofs();
+    summary.integration_points = beam.bending_points();
     if kind == LawKind::Paper {
         summary.warnings.push(
             "the `paper` law's moment drops at each switch (non-monotone, eq. (23)); Newton may \
@@ -216,13 +214,11 @@ pub(crate) fn run_beam(
     }
     let result = match scene.analysis {
         Analysis::Static { load_steps } => {
-            summary.analysis = "static".into();
             run_static(&beam, load_steps, &dir, opts.vtk, &mut summary, &mut |f| {
                 progress(name, f)
             })
         }
         Analysis::Dynamic(_) => {
-            summary.analysis = "dynamic".into();
             if matches!(kind, LawKind::Continuous | LawKind::Paper) {
                 summary.warnings.push(format!(
                     "the `{kind}` law is not a potential (its moment depends on the tension): in \
@@ -231,103 +227,141 @@ pub(crate) fn run_beam(
                 ));
             }
             let o = dynamic_options(scene).expect("a dynamic analysis");
-            match InitialState::rigid(&beam, scene.velocity, scene.angular_velocity) {
-                Err(e) => Err(e.to_string()),
-                Ok(init) => {
-                    if init.discarded > 0.0 {
-                        summary.warnings.push(format!(
-                            "the initial velocity field moves a fixed support (up to {:.3e} \
-                             m/s): the support holds those coordinates at rest",
-                            init.discarded
-                        ));
-                    }
-                    run_dynamics(&beam, &o, &init, &dir, opts.vtk, &mut summary, &mut |f| {
-                        progress(name, f)
-                    })
+            budget(&beam, &o, scene.max_steps, &mut summary).and_then(|o| {
+                let init = InitialState::rigid(&beam, scene.velocity, scene.angular_velocity)
+                    .map_err(|e| {
+                        Stop::new(failure_of_beam(&e), format!("the initial state: {e}"))
+                    })?;
+                if init.discarded > 0.0 {
+                    summary.warnings.push(format!(
+                        "the initial velocity field moves a fixed support (up to {:.3e} m/s): \
+                         the support holds those coordinates at rest",
+                        init.discarded
+                    ));
                 }
-            }
+                run_dynamics(&beam, &o, &init, &dir, opts.vtk, &mut summary, &mut |f| {
+                    progress(name, f)
+                })
+            })
         }
     };
     finish(summary, result, &dir)
 }
 
-/// Writes `centerline.csv` and `wires.csv` for the state `(q, slip, points)`.
-fn write_state(
+/// The dynamic options with the step the run will take, once the step count is within
+/// `max_steps` (refused otherwise, with the count and the time it would take). Verlet without
+/// a step takes 0.9 of the estimated stable step, estimated here once.
+fn budget(
     beam: &Beam,
-    q: &[f64],
-    slip: &[f64],
-    points: &[PointState],
-    dir: &Path,
-) -> Result<(), String> {
-    let law = beam.law();
-    let ea = law.axial_stiffness();
-    let planar = beam.spec().element == ElementKind::Planar;
-    let p = dir.join("centerline.csv");
-    let e = |e: std::io::Error| format!("writing {}: {e}", p.display());
-    let mut c = Csv::create(
-        &p,
-        &[
-            "s",
-            "x",
-            "y",
-            "z",
-            "curvature",
-            "tension",
-            "bending_stiffness",
-        ],
-    )
-    .map_err(e)?;
-    let pw = dir.join("wires.csv");
-    let ew = |e: std::io::Error| format!("writing {}: {e}", pw.display());
-    let mut wires =
-        Csv::create(&pw, &["s", "wire", "phase", "critical_curvature", "state"]).map_err(ew)?;
-    for (i, pt) in points.iter().enumerate() {
-        let (r, _) = beam.sample(q, pt.x);
-        let st = law.station(pt.x);
-        let sl = beam.point_slip(slip, i);
-        // Planar: signed curvature and the planar secant; spatial: the curvature magnitude and
-        // |M| / |kappa| of the vector law.
-        let kappa = [pt.kappa_y, pt.kappa];
-        let k = pt.kappa_y.hypot(pt.kappa);
-        let (curvature, secant) = if pt.kappa_y == 0.0 {
-            (pt.kappa, law.planar_secant(&st, pt.eps, pt.kappa, sl))
-        } else {
-            let mut tr = vec![0.0; sl.len()];
-            let r = law.vector(&st, pt.eps, kappa, sl, &mut tr);
-            (k, r.moment[0].hypot(r.moment[1]) / k)
-        };
-        c.row(&[pt.x, r[0], r[1], r[2], curvature, ea * pt.eps, secant])
-            .map_err(e)?;
-        // Phases from the neutral axis of the current bending direction: the planar
-        // convention for the planar element, the vector law's in 3D.
-        let report = if planar {
-            law.planar_wires(&st, pt.eps, pt.kappa, sl)
-        } else {
-            law.vector_wires(&st, pt.eps, kappa, sl)
-        };
-        for wr in report {
-            let crit = wr.critical_curvature.map_or("inf".to_string(), number);
-            let state = match wr.state {
-                WireState::Stick => "stick",
-                WireState::Slip => "slip",
+    opts: &DynamicOptions,
+    max_steps: usize,
+    summary: &mut RunSummary,
+) -> Result<DynamicOptions, Stop> {
+    let mut opts = *opts;
+    let (step, implicit) = match opts.scheme {
+        Scheme::Verlet { step: Some(h) } => (h, false),
+        Scheme::Verlet { step: None } => {
+            let stable = stable_step(beam).map_err(|e| {
+                Stop::new(
+                    failure_of_beam(&e),
+                    format!("estimating the stable step: {e}"),
+                )
+            })?;
+            summary.stable_time_step = Some(stable);
+            opts.scheme = Scheme::Verlet {
+                step: Some(0.9 * stable),
             };
-            wires
-                .text_row(&[
-                    number(pt.x),
-                    wr.wire.to_string(),
-                    number(wr.phase),
-                    crit,
-                    state.to_string(),
-                ])
-                .map_err(ew)?;
+            (0.9 * stable, false)
         }
+        Scheme::GeneralizedAlpha { step, .. } => (step, true),
+    };
+    let steps = budget::steps_of(opts.duration, step);
+    if steps <= max_steps as f64 {
+        return Ok(opts);
     }
-    c.finish().map_err(e)?;
-    wires.finish().map_err(ew)
+    // The cost of a step: one force evaluation (Verlet), or 2 to 10 Newton iterations, each a
+    // force evaluation and at times a tangent (generalized-alpha).
+    let mut q = beam.reference().to_vec();
+    q.iter_mut().for_each(|x| *x *= 1.0 + 1e-9);
+    let slip = beam.initial_state();
+    let mut trial = slip.clone();
+    let mut force = vec![0.0; beam.coords()];
+    let mut k = BandMatrix::zeros(beam.dofs(), beam.bandwidth(), beam.bandwidth());
+    let f = budget::time_of(|| {
+        let _ = beam.internal(&q, &slip, &mut trial, &mut force, None, None);
+    });
+    let (per_step, cost) = if implicit {
+        let t = budget::time_of(|| {
+            let _ = beam.internal(&q, &slip, &mut trial, &mut force, Some(&mut k), None);
+        });
+        (
+            (2.0 * f, 10.0 * t),
+            format!(
+                "2 to 10 Newton iterations a step ({} a force evaluation, {} with the tangent, \
+                 timed now)",
+                budget::duration(f),
+                budget::duration(t)
+            ),
+        )
+    } else {
+        (
+            (f, f),
+            format!(
+                "{} a step (a force evaluation, timed now)",
+                budget::duration(f)
+            ),
+        )
+    };
+    budget::check(steps, step, max_steps, per_step, &cost).map(|()| opts)
 }
 
-fn tip_of(beam: &Beam, q: &[f64]) -> [f64; 3] {
-    beam.sample(q, beam.length()).0
+/// The reason a beam evaluation failed.
+fn failure_of_beam(e: &BeamError) -> Failure {
+    match e {
+        BeamError::NonFinite { .. } => Failure::NonFinite,
+        BeamError::Setup(_) => Failure::Setup,
+        BeamError::Kinematics { .. } => Failure::NoConvergence,
+    }
+}
+
+fn failure_of_static(e: &StaticError) -> Failure {
+    match e {
+        StaticError::Stalled { .. } => Failure::NoConvergence,
+        StaticError::Beam(b) => failure_of_beam(b),
+    }
+}
+
+fn failure_of_dynamic(e: &DynamicError) -> Failure {
+    match e {
+        DynamicError::Beam { source, .. } => failure_of_beam(source),
+        DynamicError::Newton { .. } | DynamicError::Singular(_) => Failure::NoConvergence,
+        DynamicError::Unstable { .. } => Failure::UnstableStep,
+        DynamicError::Setup(_) => Failure::Setup,
+    }
+}
+
+/// Writes `centerline.csv` and `wires.csv` (and with `vtk` the static frame) for the state
+/// `(q, slip, points)`; records the tip and any non-finite values left empty.
+fn write_state(
+    beam: &Beam,
+    state: (&[f64], &[f64], &[PointState]),
+    dir: &Path,
+    vtk: Option<&str>,
+    summary: &mut RunSummary,
+) -> Result<(), Stop> {
+    let (q, slip, points) = state;
+    summary.tip = Some(beam.sample(q, beam.length()).0);
+    let rows = beam_state::rows(beam, q, slip, points);
+    let blanks = beam_state::write(beam, &rows, slip, dir).map_err(Stop::output)?;
+    if blanks > 0 {
+        summary.warnings.push(format!(
+            "centerline.csv: {blanks} non-finite values left empty"
+        ));
+    }
+    if let Some(title) = vtk {
+        beam_state::write_vtk(&rows, dir, title).map_err(Stop::output)?;
+    }
+    Ok(())
 }
 
 fn run_static(
@@ -337,7 +371,7 @@ fn run_static(
     vtk: bool,
     summary: &mut RunSummary,
     progress: &mut dyn FnMut(f64),
-) -> Result<(), String> {
+) -> Result<(), Stop> {
     let opts = StaticOptions {
         load_steps,
         ..StaticOptions::default()
@@ -345,19 +379,38 @@ fn run_static(
     let t0 = Instant::now();
     let sol = solve_static(beam, &opts, progress);
     summary.wall_time_s = t0.elapsed().as_secs_f64();
-    let sol = sol.map_err(|e| e.to_string())?;
+    let title = format!("{} static", summary.scene);
+    let vtk = vtk.then_some(title.as_str());
+    let sol = match sol {
+        Ok(sol) => sol,
+        Err(e) => {
+            let stop = Stop::new(failure_of_static(&e), e.to_string());
+            // The last converged load step's state, for the files.
+            if let StaticError::Stalled {
+                last: Some(last),
+                reached,
+                ..
+            } = &e
+            {
+                summary.steps = last.steps;
+                summary.newton_iterations = last.iterations;
+                summary.warnings.push(format!(
+                    "the files hold the last equilibrium found, at load fraction {reached:.6}"
+                ));
+                write_state(beam, (&last.q, &last.slip, &last.points), dir, vtk, summary)?;
+            }
+            return Err(stop);
+        }
+    };
     summary.steps = sol.steps;
     summary.newton_iterations = sol.iterations;
-    summary.tip = tip_of(beam, &sol.q);
     if sol.cuts > 0 {
-        summary
-            .warnings
-            .push(format!("{} load steps were cut and retried", sol.cuts));
+        summary.warnings.push(format!(
+            "{} load steps were cut and retried (Newton did not converge at their size)",
+            sol.cuts
+        ));
     }
-    if vtk {
-        write_static_vtk(beam, &sol.q, dir)?;
-    }
-    write_state(beam, &sol.q, &sol.slip, &sol.points, dir)
+    write_state(beam, (&sol.q, &sol.slip, &sol.points), dir, vtk, summary)
 }
 
 /// Centreline of `q` sampled 4 times per element (m).
@@ -368,15 +421,6 @@ fn centreline(beam: &Beam, q: &[f64]) -> Vec<[f64; 3]> {
         .collect()
 }
 
-/// The static state as one VTK frame, `vtk/centerline_00000.vtk`, like a dynamic run's.
-fn write_static_vtk(beam: &Beam, q: &[f64], dir: &Path) -> Result<(), String> {
-    let d = dir.join("vtk");
-    let path = d.join("centerline_00000.vtk");
-    std::fs::create_dir_all(&d)
-        .and_then(|_| write_vtk_polyline(&path, "static equilibrium", &centreline(beam, q), &[]))
-        .map_err(|e| format!("writing {}: {e}", path.display()))
-}
-
 fn run_dynamics(
     beam: &Beam,
     opts: &DynamicOptions,
@@ -385,14 +429,14 @@ fn run_dynamics(
     vtk: bool,
     summary: &mut RunSummary,
     progress: &mut dyn FnMut(f64),
-) -> Result<(), String> {
+) -> Result<(), Stop> {
     let moving = beam.has_moving_supports();
     let extra: &[&str] = if moving {
         &["non_potential", "support_work"]
     } else {
         &["non_potential"]
     };
-    let mut files = FrameFiles::create(dir, vtk, extra)?;
+    let mut files = FrameFiles::create(dir, vtk, extra).map_err(Stop::output)?;
     let n = beam.spec().elements;
     let nd = beam.node_coords();
     let k = n * nd;
@@ -400,7 +444,9 @@ fn run_dynamics(
     let dim = nd / 2;
     let mut write_error: Option<String> = None;
     let mut last_q = init.q.clone();
+    let mut last_slip = init.state.clone();
     let mut last_points: Vec<PointState> = Vec::new();
+    let mut last_t = 0.0;
     let t0 = Instant::now();
     let result = run_dynamic_from(beam, opts, init, &mut |f| {
         if write_error.is_some() {
@@ -424,24 +470,46 @@ fn run_dynamics(
             write_error = Some(format!("writing results: {err}"));
         }
         last_q.copy_from_slice(f.q);
+        last_slip.copy_from_slice(f.slip);
         last_points.clear();
         last_points.extend_from_slice(f.points);
+        last_t = f.t;
         progress(f.t / opts.duration);
     });
     summary.wall_time_s = t0.elapsed().as_secs_f64();
-    files.finish()?;
-    if let Some(e) = write_error {
-        return Err(e);
+    let blanks = files.blanks();
+    files.finish().map_err(Stop::output)?;
+    if blanks > 0 {
+        summary.warnings.push(format!(
+            "tip.csv, energy.csv: {blanks} non-finite values left empty"
+        ));
     }
-    summary.tip = tip_of(beam, &last_q);
-    let s = result.map_err(|e| e.to_string())?;
+    if let Some(e) = write_error {
+        return Err(Stop::output(e));
+    }
+    let s = match result {
+        Ok(s) => s,
+        Err(e) => {
+            let stop = Stop::new(failure_of_dynamic(&e), e.to_string());
+            if !last_points.is_empty() {
+                summary.warnings.push(format!(
+                    "centerline.csv and wires.csv hold the last output frame, t = {last_t:.6e} s"
+                ));
+                write_state(
+                    beam,
+                    (&last_q, &last_slip, &last_points),
+                    dir,
+                    None,
+                    summary,
+                )?;
+            }
+            return Err(stop);
+        }
+    };
     summary.steps = s.steps;
     summary.newton_iterations = s.newton_iterations;
     summary.time_step = Some(s.time_step);
-    summary.stable_time_step = s.stable_step;
-    summary.energy_balance_error = Some(s.balance_error);
-    summary.energy_balance_relative = Some(s.balance_error / s.max_kinetic.max(f64::MIN_POSITIVE));
-    summary.dissipated = Some(s.last.dissipated);
+    summary.stable_time_step = s.stable_step.or(summary.stable_time_step);
     summary.non_potential_work = Some(s.last.non_potential);
     // Above round-off of the energy sums: the law has put energy into the strand.
     if s.last.non_potential > 1e-9 * s.max_kinetic {
@@ -467,6 +535,23 @@ fn run_dynamics(
         });
     }
     let relative = s.balance_error / s.max_kinetic.max(f64::MIN_POSITIVE);
+    summary.energy_balance_error = Some(s.balance_error);
+    summary.energy_balance_relative = Some(relative);
+    summary.dissipated = Some(s.last.dissipated);
+    if s.cut_steps > 0 {
+        summary.warnings.push(format!(
+            "steps were cut {} times: where Newton did not converge at the step of {:.3e} s \
+             asked for, the step was taken in two halves (again, down to 1/1024 of it)",
+            s.cut_steps, s.time_step
+        ));
+    }
+    if opts.output_interval < s.time_step {
+        summary.warnings.push(format!(
+            "analysis.output_interval {:.3e} s is shorter than the time step {:.3e} s: a frame \
+             is written at every step",
+            opts.output_interval, s.time_step
+        ));
+    }
     if relative > BALANCE_WARNING {
         summary.warnings.push(format!(
             "energy balance not closed: the error {:.3e} J is {relative:.2e} of the largest \
@@ -475,5 +560,5 @@ fn run_dynamics(
             s.balance_error, s.time_step
         ));
     }
-    write_state(beam, &s.q, &s.slip, &last_points, dir)
+    write_state(beam, (&s.q, &s.slip, &last_points), dir, None, summary)
 }

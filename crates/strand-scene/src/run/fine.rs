@@ -29,8 +29,11 @@ use strand_fine::{
     ContactOptions, ContactState, Discretisation, FineModel, Integrator, ModelState, WireLoads,
 };
 
-use super::record::{RunError, RunOptions, RunSummary, finish, io_err};
-use crate::output::{Csv, FrameFiles, number};
+use super::budget;
+use super::record::{
+    BALANCE_WARNING, Failure, RunError, RunOptions, RunSummary, Stop, finish, io_err,
+};
+use crate::output::{Csv, FrameFiles, number, write_vtk_polyline};
 use crate::scene::{Analysis, End, IntegratorKind, Scene, SupportKind};
 use strand_ancf::beam::SupportMotion;
 
@@ -136,29 +139,23 @@ pub(crate) fn run_fine(
             ));
         }
     }
-    let mut summary = RunSummary {
-        scene: scene.name.clone(),
-        model: name.into(),
-        law: "contact and friction (no section law)".into(),
-        analysis: String::new(),
-        status: "ok".into(),
-        error: None,
-        dofs: 6 * model.segment_count(),
-        elements: model.segment_count(),
-        integration_points: 0,
-        steps: 0,
-        newton_iterations: 0,
-        wall_time_s: 0.0,
-        tip: [f64::NAN; 3],
-        time_step: None,
-        stable_time_step: None,
-        energy_balance_error: None,
-        energy_balance_relative: None,
-        dissipated: None,
-        non_potential_work: None,
-        built,
-        warnings,
+    let analysis = match scene.analysis {
+        Analysis::Static { .. } => "static",
+        Analysis::Dynamic(_) => "dynamic",
     };
+    let mut summary = RunSummary::start(
+        &scene.name,
+        name,
+        "contact and friction (no section law)",
+        analysis,
+    );
+    summary.dofs = 6 * model.segment_count();
+    summary.elements = model.segment_count();
+    summary.built = built;
+    summary.warnings = warnings;
+    // Planar scenes write signed curvatures and moments about the scene's Z (in the model's
+    // axes here); 3D scenes their magnitudes.
+    let plane = scene.is_planar().then(|| rot.inverse() * Vector3::z());
     if !scene.point_forces.is_empty() {
         summary.built.push(format!(
             "{} point force(s) on the core, split between the segments around them",
@@ -175,20 +172,24 @@ pub(crate) fn run_fine(
     }
     let motions = [motion(scene, End::Start), motion(scene, End::End)];
     let result = match scene.analysis {
-        Analysis::Static { load_steps } => {
-            summary.analysis = "static".into();
-            run_static(&model, &mut state, load_steps, &mut summary, &mut |f| {
-                progress(name, f)
-            })
-        }
+        Analysis::Static { load_steps } => run_static(
+            &model,
+            &mut state,
+            load_steps,
+            scene.max_steps,
+            &mut summary,
+            &mut |f| progress(name, f),
+        ),
         Analysis::Dynamic(dy) => {
-            summary.analysis = "dynamic".into();
             let stable = fine::stable_time_step(&model, &state, STEP_SAFETY);
             summary.stable_time_step = Some(stable);
             let dt = match (dy.integrator, dy.time_step) {
-                (IntegratorKind::Verlet, Some(dt)) if dt > stable => Err(format!(
-                    "analysis.time_step: {dt:e} s is above the fine model's stable step \
-                     {stable:.3e} s"
+                (IntegratorKind::Verlet, Some(dt)) if dt > stable => Err(Stop::new(
+                    Failure::UnstableStep,
+                    format!(
+                        "analysis.time_step: {dt:e} s is above the fine model's stable step \
+                         {stable:.3e} s"
+                    ),
                 )),
                 (IntegratorKind::Verlet, Some(dt)) => Ok(dt),
                 (IntegratorKind::Verlet, None) => Ok(stable),
@@ -201,51 +202,78 @@ pub(crate) fn run_fine(
                     Ok(stable)
                 }
             };
-            match dt {
-                Err(e) => Err(e),
-                Ok(dt) => {
-                    summary.time_step = Some(dt);
-                    run_dynamic(
-                        &mut model,
-                        &mut state,
-                        &motions,
-                        &Frames {
-                            duration: dy.duration,
-                            dt,
-                            interval: dy.output_interval,
-                        },
-                        rot,
-                        &dir,
-                        opts.vtk,
-                        &mut summary,
-                        &mut |f| progress(name, f),
-                    )
-                }
-            }
+            dt.and_then(|dt| {
+                let frames = Frames::new(dy.duration, dt, dy.output_interval, &mut summary);
+                budget_check(&model, &state, &frames, scene.max_steps)?;
+                run_dynamic(
+                    &mut model,
+                    &mut state,
+                    &motions,
+                    &frames,
+                    rot,
+                    &dir,
+                    opts.vtk,
+                    &mut summary,
+                    &mut |f| progress(name, f),
+                )
+            })
         }
     };
     // The final (or last computed) state along the strand, and the contact states.
-    let written = write_state(&model, &state, rot, &dir);
-    summary.tip = (rot
+    let written = write_state(
+        &model,
+        &state,
+        rot,
+        plane,
+        &dir,
+        opts.vtk && analysis == "static",
+    )
+    .map_err(Stop::output);
+    let tip = rot
         * model
             .core_centreline(&state)
             .last()
             .copied()
-            .unwrap_or_default())
-    .into();
+            .unwrap_or_default();
+    summary.tip = tip.iter().all(|v| v.is_finite()).then(|| tip.into());
     let result = result.and(written);
     finish(summary, result, &dir)
+}
+
+/// Refuses a dynamic run of more than `max_steps` steps, with the time it would take at the
+/// cost of a step timed on this model now.
+fn budget_check(
+    model: &FineModel,
+    state: &ModelState,
+    frames: &Frames,
+    max_steps: usize,
+) -> Result<(), Stop> {
+    let steps = budget::steps_of(frames.duration, frames.dt);
+    if steps <= max_steps as f64 {
+        return Ok(());
+    }
+    let mut probe = state.clone();
+    let mut int = Integrator::new(model, &probe, frames.dt);
+    let t = budget::time_of(|| int.step(model, &mut probe));
+    budget::check(
+        steps,
+        frames.dt,
+        max_steps,
+        (t, t),
+        &format!("{} a step (timed now)", budget::duration(t)),
+    )
 }
 
 fn run_static(
     model: &FineModel,
     state: &mut ModelState,
     load_steps: usize,
+    max_steps: usize,
     summary: &mut RunSummary,
     progress: &mut dyn FnMut(f64),
-) -> Result<(), String> {
+) -> Result<(), Stop> {
     if model.contact_count() > 0 {
-        return run_settle(model, state, summary, progress);
+        return run_settle(model, state, max_steps, summary, progress);
     }
     let opts = fine::StaticOptions {
         load_steps,
@@ -254,7 +282,13 @@ fn run_static(
     let t0 = Instant::now();
     let report = fine::solve_static_with_progress(model, state, &opts, progress);
     summary.wall_time_s = t0.elapsed().as_secs_f64();
-    let report = report.map_err(|e| e.to_string())?;
+    let report = report.map_err(|e| {
+        let reason = match e {
+            fine::StaticError::NonFinite { .. } => Failure::NonFinite,
+            _ => Failure::NoConvergence,
+        };
+        Stop::new(reason, e.to_string())
+    })?;
     summary.steps = report.load_steps;
     summary.newton_iterations = report.iterations;
     summary.built.push(format!(
@@ -267,14 +301,22 @@ fn run_static(
 
 /// Statics with contacts: damped motion to rest, then Newton ([`fine::solve_settled`]);
 /// Newton load stepping from the straight strand stalls where weight-loaded contacts near
-/// zero gap switch state between iterations.
+/// zero gap switch state between iterations. The motion takes at most `max_steps` steps.
 fn run_settle(
     model: &FineModel,
     state: &mut ModelState,
+    max_steps: usize,
     summary: &mut RunSummary,
     progress: &mut dyn FnMut(f64),
-) -> Result<(), String> {
-    let opts = fine::SettledOptions::default();
+) -> Result<(), Stop> {
+    let mut opts = fine::SettledOptions::default();
+    let dt = fine::stable_time_step(model, state, opts.settle.safety);
+    let by_steps = max_steps as f64 * dt;
+    let capped = by_steps < opts.settle.max_time;
+    if capped {
+        opts.settle.max_time = by_steps;
+    }
+    opts.settle.time_step = Some(dt);
     let t0 = Instant::now();
     let mut first = None;
     let report = fine::solve_settled(model, state, &opts, &mut |_, _, ratio| {
@@ -283,7 +325,17 @@ fn run_settle(
         progress((r0 / ratio.max(1.0)).ln() / r0.ln());
     });
     summary.wall_time_s = t0.elapsed().as_secs_f64();
-    let r = report.map_err(|e| e.to_string())?;
+    let r = report.map_err(|e| match e {
+        fine::SettleError::NonFinite { .. } => Stop::new(Failure::NonFinite, e.to_string()),
+        fine::SettleError::NotSettled { .. } if capped => Stop::new(
+            Failure::StepLimit,
+            format!(
+                "{e}: the motion stopped at analysis.max_steps = {max_steps} steps of {dt:.3e} s; \
+                 raise analysis.max_steps (or pass --max-steps) to let it settle"
+            ),
+        ),
+        fine::SettleError::NotSettled { .. } => Stop::new(Failure::NoConvergence, e.to_string()),
+    })?;
     let s = &r.settle;
     summary.steps = s.steps as usize;
     summary.time_step = Some(s.time_step);
@@ -294,30 +346,67 @@ fn run_settle(
          {:.3} s), then Newton from the settled state",
         s.ramp_time, s.damping_rate, s.steps, s.time_step, s.time,
     ));
-    summary.built.push(match r.polish {
-        Some(p) => format!(
+    match r.polish {
+        Some(p) => summary.built.push(format!(
             "converged: every segment's force and torque within {:.0e} of the largest segment \
              load {:.3e} N (or within round-off {:.1e} N with a Newton correction within the \
              round-off of the positions) after {} Newton iterations in {} attempt(s) (largest \
              scaled load {:.2e})",
             opts.polish.tolerance, p.force_scale, p.roundoff, r.iterations, r.attempts, p.residual
-        ),
-        None => format!(
-            "converged by the damped motion: every segment's force and torque within {:.0e} of \
-             the largest segment load {:.3e} N (largest scaled load {:.2e}); Newton from the \
-             settled state stalled in {} attempts on contacts switching state between \
-             iterations",
-            r.tolerance, s.force_scale, r.residual, r.attempts
-        ),
-    });
+        )),
+        None => summary.warnings.push(format!(
+            "settled but not polished: every segment's force and torque is within {:.0e} of the \
+             largest segment load {:.3e} N (largest scaled load {:.2e}), not the {:.0e} asked \
+             for; Newton from the settled state stalled in {} attempts on contacts switching \
+             state between iterations",
+            r.tolerance, s.force_scale, r.residual, opts.polish.tolerance, r.attempts
+        )),
+    }
     Ok(())
 }
 
 /// Time stepping and output frames of a dynamic run.
 struct Frames {
     duration: f64,
+    /// Time step (s).
     dt: f64,
-    interval: f64,
+    /// Steps between output frames.
+    every: usize,
+}
+
+impl Frames {
+    /// Frames every `interval` (s) of a run of `duration` (s) at a step of about `dt` (s): the
+    /// step is shortened so that output times fall on steps (a warning says so when that costs
+    /// more than 1 % more steps); an interval shorter than the step writes a frame every step
+    /// (with a warning).
+    fn new(duration: f64, dt: f64, interval: f64, summary: &mut RunSummary) -> Frames {
+        if interval < dt {
+            summary.warnings.push(format!(
+                "analysis.output_interval {interval:.3e} s is shorter than the fine model's time \
+                 step {dt:.3e} s: a frame is written at every step"
+            ));
+            return Frames {
+                duration,
+                dt,
+                every: 1,
+            };
+        }
+        let every = budget::steps_of(interval, dt) as usize;
+        let short = interval / every as f64;
+        if short < 0.99 * dt {
+            summary.warnings.push(format!(
+                "the fine model's time step was shortened from {dt:.4e} s to {short:.4e} s so that \
+                 the output times (every {interval:.3e} s) fall on steps ({:.0} % more steps): \
+                 an output interval that is a multiple of the step avoids it",
+                100.0 * (dt / short - 1.0)
+            ));
+        }
+        Frames {
+            duration,
+            dt: short,
+            every,
+        }
+    }
 }
 
 fn run_dynamic(
@@ -330,13 +419,13 @@ fn run_dynamic(
     vtk: bool,
     summary: &mut RunSummary,
     progress: &mut dyn FnMut(f64),
-) -> Result<(), String> {
+) -> Result<(), Stop> {
     let moving = motions.iter().any(Option::is_some);
     let mut extra = vec!["kinetic_rotation", "contact", "friction_stored"];
     if moving {
         extra.push("support_work");
     }
-    let mut files = FrameFiles::create(dir, vtk, &extra)?;
+    let mut files = FrameFiles::create(dir, vtk, &extra).map_err(Stop::output)?;
     let ends = [fine::End::Start, fine::End::End];
     // Support displacement (model axes) at time t.
     let place = |m: usize, t: f64| -> Vector3<f64> {
@@ -347,9 +436,7 @@ fn run_dynamic(
     let core = &model.wires[0].chain;
     let last = core.len() - 1;
     let tip_offset = core.segments[last].end_offset();
-    // The step is shortened so that output times fall on steps.
-    let every = ((frames.interval / frames.dt).ceil() as usize).max(1);
-    let dt = frames.interval / every as f64;
+    let (every, dt) = (frames.every, frames.dt);
     let steps = ((frames.duration / dt) * (1.0 - 1e-12)).ceil() as usize;
     summary.time_step = Some(dt);
     let mut int = Integrator::new(model, state, dt);
@@ -387,9 +474,12 @@ fn run_dynamic(
                 .collect()
         })
     };
-    write(0.0, model, state, &e0, 0.0).map_err(|e| format!("writing results: {e}"))?;
+    write(0.0, model, state, &e0, 0.0)
+        .map_err(|e| Stop::output(format!("writing results: {e}")))?;
     let t0 = Instant::now();
     let mut failure = None;
+    // The state of the last output frame: what the files keep if the run blows up.
+    let (mut last_good, mut last_t) = (state.clone(), 0.0);
     for k in 1..=steps {
         // The ground takes its place at the step's end before the drift's loads.
         let mut shift = [Vector3::zeros(); 2];
@@ -417,24 +507,47 @@ fn run_dynamic(
         max_kinetic = max_kinetic.max(e.kinetic_translation + e.kinetic_rotation);
         if k % every == 0 || k == steps {
             write(int.time, model, state, &e, support_work)
-                .map_err(|e| format!("writing results: {e}"))?;
+                .map_err(|e| Stop::output(format!("writing results: {e}")))?;
+            last_good.clone_from(state);
+            last_t = int.time;
             progress(int.time / frames.duration);
         }
     }
+    if failure.is_some() {
+        *state = last_good;
+        summary.warnings.push(format!(
+            "centerline.csv and contacts.csv hold the last output frame, t = {last_t:.6e} s"
+        ));
+    }
     summary.wall_time_s = t0.elapsed().as_secs_f64();
     summary.steps = int.steps as usize;
-    files.finish()?;
+    let blanks = files.blanks();
+    files.finish().map_err(Stop::output)?;
+    if blanks > 0 {
+        summary.warnings.push(format!(
+            "tip.csv, energy.csv: {blanks} non-finite values left empty"
+        ));
+    }
+    let relative = err / max_kinetic.max(f64::MIN_POSITIVE);
     summary.energy_balance_error = Some(err);
-    summary.energy_balance_relative = Some(err / max_kinetic.max(f64::MIN_POSITIVE));
+    summary.energy_balance_relative = Some(relative);
     summary.dissipated = Some(state.friction_work);
     summary.built.push(format!(
         "explicit symplectic kick-drift-kick, {} steps of {:.3e} s",
         int.steps, dt
     ));
-    match failure {
-        Some(f) => Err(f),
-        None => Ok(()),
+    if let Some(f) = failure {
+        return Err(Stop::new(Failure::NonFinite, f));
     }
+    if relative > BALANCE_WARNING {
+        summary.warnings.push(format!(
+            "energy balance not closed: the error {err:.3e} J is {relative:.2e} of the largest \
+             kinetic energy; the explicit step {dt:.3e} s is at the stability limit, so an open \
+             balance points at contacts switching faster than the step resolves (or a blow-up \
+             in the making): check the contact states and the motion"
+        ));
+    }
+    Ok(())
 }
 
 /// Diagnosis of a non-finite state: the first segment with a non-finite pose or momentum.
@@ -465,12 +578,17 @@ fn non_finite(model: &FineModel, state: &ModelState, step: usize, t: f64) -> Str
     format!("non-finite energy at step {step} (t = {t:.6e} s)")
 }
 
-/// Writes `centerline.csv` (measured along the core) and `contacts.csv` for `state`.
+/// Writes `centerline.csv` (measured along the core) and `contacts.csv` for `state`, and with
+/// `vtk` the state as the one frame of a static run. `plane`: the scene's Z in the model's
+/// axes for a planar scene, whose curvatures and moments are then signed about it (the sign
+/// convention of the beams' files); in 3D they are magnitudes.
 fn write_state(
     model: &FineModel,
     state: &ModelState,
     rot: UnitQuaternion<f64>,
+    plane: Option<Vector3<f64>>,
     dir: &Path,
+    vtk: bool,
 ) -> Result<(), String> {
     let mut loads = model.load_buffers();
     model.compute_loads(state, 1.0, &mut loads);
@@ -490,26 +608,42 @@ fn write_state(
         ],
     )
     .map_err(e)?;
-    for row in measure_along(model, state, &loads) {
+    let rows = measure_along(model, state, &loads, plane);
+    let stiffness = secant_along(&rows);
+    for (row, k) in rows.iter().zip(&stiffness) {
         let x = rot * row.position;
-        let stiffness = if row.curvature > 0.0 {
-            row.moment / row.curvature
-        } else {
-            f64::INFINITY
-        };
-        c.row(&[
-            row.s,
-            x.x,
-            x.y,
-            x.z,
-            row.curvature,
-            row.tension,
-            stiffness,
-            row.moment,
+        // M / kappa is undefined where the strand is straight everywhere: left empty.
+        c.text_row(&[
+            number(row.s),
+            number(x.x),
+            number(x.y),
+            number(x.z),
+            number(row.curvature),
+            number(row.tension),
+            k.map_or(String::new(), number),
+            number(row.moment),
         ])
         .map_err(e)?;
     }
     c.finish().map_err(e)?;
+    if vtk {
+        let d = dir.join("vtk");
+        std::fs::create_dir_all(&d).map_err(|e| format!("writing {}: {e}", d.display()))?;
+        let path = d.join("centerline_00000.vtk");
+        let points: Vec<[f64; 3]> = rows.iter().map(|r| (rot * r.position).into()).collect();
+        let column = |f: fn(&Station) -> f64| rows.iter().map(f).collect::<Vec<f64>>();
+        write_vtk_polyline(
+            &path,
+            "fine model, static",
+            &points,
+            &[
+                ("curvature", column(|r| r.curvature)),
+                ("tension", column(|r| r.tension)),
+                ("moment", column(|r| r.moment)),
+            ],
+        )
+        .map_err(|e| format!("writing {}: {e}", path.display()))?;
+    }
     let pc = dir.join("contacts.csv");
     let ec = |e: std::io::Error| format!("writing {}: {e}", pc.display());
     let mut cc = Csv::create(
@@ -563,8 +697,40 @@ struct Station {
     moment: f64,
 }
 
-/// Curvature, tension and bending moment at the core's centreline nodes (module docs).
-fn measure_along(model: &FineModel, state: &ModelState, loads: &[WireLoads]) -> Vec<Station> {
+/// M / kappa at every station (N m^2); where the curvature is zero (a free or pinned end), its
+/// limit along the strand: the ratio at the nearest station with curvature. `None` where no
+/// station is bent.
+fn secant_along(rows: &[Station]) -> Vec<Option<f64>> {
+    let ratio = |r: &Station| (r.curvature != 0.0).then(|| r.moment / r.curvature);
+    (0..rows.len())
+        .map(|i| {
+            ratio(&rows[i]).or_else(|| {
+                (1..rows.len()).find_map(|d| {
+                    let near = [i.checked_sub(d), Some(i + d).filter(|&j| j < rows.len())];
+                    near.into_iter().flatten().find_map(|j| ratio(&rows[j]))
+                })
+            })
+        })
+        .collect()
+}
+
+/// Curvature, tension and bending moment at the core's centreline nodes (module docs);
+/// curvature and moment signed about `plane` if given, else magnitudes.
+fn measure_along(
+    model: &FineModel,
+    state: &ModelState,
+    loads: &[WireLoads],
+    plane: Option<Vector3<f64>>,
+) -> Vec<Station> {
+    // The bending part of a rotation vector in the axes of the segment at `pose`, in the
+    // model's axes; its length is the bending angle.
+    let bend = |theta: Vector3<f64>, pose: &fine::Pose| {
+        pose.rotation * Vector3::new(0.0, theta.y, theta.z)
+    };
+    let signed = |v: Vector3<f64>| match plane {
+        Some(z) => v.dot(&z),
+        None => v.norm(),
+    };
     let core = &model.wires[0];
     let poses = &state.wires[0].poses;
     let nodes = core.chain.centreline(poses);
@@ -581,20 +747,22 @@ fn measure_along(model: &FineModel, state: &ModelState, loads: &[WireLoads]) -> 
         } else {
             (poses[i - 1].tangent() + poses[i].tangent()).normalize()
         };
-        let bend = |theta: Vector3<f64>| theta.y.hypot(theta.z);
         let curvature = if i == 0 || i == n {
             let seg = if i == 0 { 0 } else { n - 1 };
             core.anchors
                 .iter()
                 .find(|a| a.segment == seg && a.joint.stiffness.rotational.y > 0.0)
                 .map_or(0.0, |a| {
-                    bend(a.joint.rotation_strain(&a.ground, &poses[seg]))
-                        / (0.5 * core.chain.segments[seg].length)
+                    // The anchor turns from the ground to the segment at x = 0, from the
+                    // segment to the ground at x = L.
+                    let turn = bend(a.joint.rotation_strain(&a.ground, &poses[seg]), &poses[seg]);
+                    let turn = if i == 0 { turn } else { -turn };
+                    signed(turn) / (0.5 * core.chain.segments[seg].length)
                 })
         } else {
             let j = &core.chain.joints[i - 1];
             let l = (poses[i].position - poses[i - 1].position).norm();
-            bend(j.rotation_strain(&poses[i - 1], &poses[i])) / l
+            signed(bend(j.rotation_strain(&poses[i - 1], &poses[i]), &poses[i])) / l
         };
         // Resultant on the far part (every segment whose rest centre lies beyond s).
         let (mut force, mut moment) = (Vector3::zeros(), Vector3::zeros());
@@ -611,13 +779,15 @@ fn measure_along(model: &FineModel, state: &ModelState, loads: &[WireLoads]) -> 
         }
         // `force`, `moment`: the near part's action on the far part (the far part's own
         // internal loads cancel in the sums).
+        // The moment that bends the near part's end; with the curvature's sign convention the
+        // hanging cantilever's is negative, like its curvature.
         let bending = moment - t * moment.dot(&t);
         out.push(Station {
             s,
             position: *node,
             curvature,
             tension: -force.dot(&t),
-            moment: bending.norm(),
+            moment: signed(-bending),
         });
     }
     out

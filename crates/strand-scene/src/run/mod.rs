@@ -5,6 +5,8 @@
 //! `beam` runs the equivalent and traditional beams, `fine` the fine model.
 
 pub(crate) mod beam;
+mod beam_state;
+mod budget;
 pub(crate) mod fine;
 pub(crate) mod record;
 
@@ -12,10 +14,12 @@ use strand_core::LawKind;
 
 use crate::scene::{BeamModel, Scene};
 pub use beam::{BeamModelKind, build_beam, dynamic_options};
-pub use record::{RunError, RunOptions, RunSummary};
+pub use record::{Failure, RunError, RunOptions, RunSummary};
 
 /// Runs every model `scene` names and writes their results below `opts.out`. `progress`
-/// receives (model, fraction done). Returns one summary per model run.
+/// receives (model, fraction done). Returns one summary per model: each model runs on its own,
+/// and one that fails (`status` `failed`, with `reason` and `error`) keeps the files it wrote
+/// and leaves the others to run. The error is for a `summary.json` that cannot be written.
 pub fn run_scene(
     scene: &Scene,
     opts: &RunOptions,

@@ -28,9 +28,12 @@ pub struct RunSummary {
     pub law: String,
     /// `static` or `dynamic`.
     pub analysis: String,
-    /// `ok`, or `failed` with `error` set (the files hold what was computed until then).
+    /// `ok`, or `failed` with `reason` and `error` set (the files hold what was computed
+    /// until then).
     pub status: String,
-    /// Why the run failed.
+    /// Why the run failed, in one word ([`Failure`]).
+    pub reason: Option<Failure>,
+    /// Why the run failed: what, where and what to do.
     pub error: Option<String>,
     /// Degrees of freedom.
     pub dofs: usize,
@@ -44,8 +47,8 @@ pub struct RunSummary {
     pub newton_iterations: usize,
     /// Wall time of the solve (s).
     pub wall_time_s: f64,
-    /// Tip position at the end (m).
-    pub tip: [f64; 3],
+    /// Tip position at the end, or where the run stopped (m); `None` if nothing was computed.
+    pub tip: Option<[f64; 3]>,
     /// Time step (s, dynamics).
     pub time_step: Option<f64>,
     /// Estimated stable step of the explicit integrator (s, runs of the explicit integrator).
@@ -107,26 +110,130 @@ pub(crate) fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> RunError + '
     }
 }
 
-/// Records the outcome `result` of a model's run in `summary`, writes `dir/summary.json` and
-/// returns the summary, or the solver's failure (the files hold what was computed).
+/// Why a model's run failed: the `reason` of `summary.json`, one word a script can test.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Failure {
+    /// The model could not be built from the scene.
+    Setup,
+    /// The run would take more steps than `analysis.max_steps` allows: refused before it
+    /// started, with the count and an estimate of its time.
+    StepLimit,
+    /// The solver did not converge (no static equilibrium, Newton failed in a time step, the
+    /// damped motion did not come to rest).
+    NoConvergence,
+    /// A NaN or infinite value appeared.
+    NonFinite,
+    /// The explicit time step is above the estimated stable step.
+    UnstableStep,
+    /// A result file could not be written.
+    Output,
+}
+
+impl Failure {
+    /// The name `summary.json` gives it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Failure::Setup => "setup",
+            Failure::StepLimit => "step-limit",
+            Failure::NoConvergence => "no-convergence",
+            Failure::NonFinite => "non-finite",
+            Failure::UnstableStep => "unstable-step",
+            Failure::Output => "output",
+        }
+    }
+}
+
+impl std::fmt::Display for Failure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A run that stopped: why, and the message that says where and what to do.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Stop {
+    pub reason: Failure,
+    pub message: String,
+}
+
+impl Stop {
+    pub fn new(reason: Failure, message: impl Into<String>) -> Stop {
+        Stop {
+            reason,
+            message: message.into(),
+        }
+    }
+
+    /// A result file could not be written.
+    pub fn output(message: impl Into<String>) -> Stop {
+        Stop::new(Failure::Output, message)
+    }
+}
+
+impl RunSummary {
+    /// An empty record of `model`'s run of `scene` (status `ok`, nothing computed yet).
+    pub(crate) fn start(scene: &str, model: &str, law: &str, analysis: &str) -> RunSummary {
+        RunSummary {
+            scene: scene.into(),
+            model: model.into(),
+            law: law.into(),
+            analysis: analysis.into(),
+            status: "ok".into(),
+            reason: None,
+            error: None,
+            dofs: 0,
+            elements: 0,
+            integration_points: 0,
+            steps: 0,
+            newton_iterations: 0,
+            wall_time_s: 0.0,
+            tip: None,
+            time_step: None,
+            stable_time_step: None,
+            energy_balance_error: None,
+            energy_balance_relative: None,
+            dissipated: None,
+            non_potential_work: None,
+            built: Vec::new(),
+            warnings: Vec::new(),
+        }
+    }
+
+    /// Whether the run failed (`status` is `failed`; `reason` and `error` say why).
+    pub fn failed(&self) -> bool {
+        self.status == "failed"
+    }
+
+    /// `model (reason): error` of a failed run; `None` for one that finished.
+    pub fn failure(&self) -> Option<String> {
+        self.failed().then(|| {
+            format!(
+                "{} ({}): {}",
+                self.model,
+                self.reason.map_or("failed", Failure::name),
+                self.error.as_deref().unwrap_or("no reason given")
+            )
+        })
+    }
+}
+
+/// Records the outcome `result` of a model's run in `summary` and writes `dir/summary.json`.
+/// A failed run is recorded, not returned as an error (its files hold what was computed); the
+/// error is only for a `summary.json` that cannot be written.
 pub(crate) fn finish(
     mut summary: RunSummary,
-    result: Result<(), String>,
+    result: Result<(), Stop>,
     dir: &Path,
 ) -> Result<RunSummary, RunError> {
-    if let Err(message) = &result {
+    if let Err(stop) = result {
         summary.status = "failed".into();
-        summary.error = Some(message.clone());
+        summary.reason = Some(stop.reason);
+        summary.error = Some(stop.message);
     }
+    std::fs::create_dir_all(dir).map_err(io_err(dir))?;
     let path = dir.join("summary.json");
     let text = serde_json::to_string_pretty(&summary).expect("summary serializes");
     std::fs::write(&path, text + "\n").map_err(io_err(&path))?;
-    match result {
-        Ok(()) => Ok(summary),
-        Err(message) => Err(RunError::Solve {
-            model: summary.model,
-            message,
-            dir: dir.display().to_string(),
-        }),
-    }
+    Ok(summary)
 }

@@ -1,0 +1,178 @@
+//! The state of a beam along the strand as its result files give it: `centerline.csv` from
+//! s = 0 to s = L (the two ends and every bending integration point), `wires.csv` (the stick or
+//! slip state of every wire at every bending point) and, for statics, a VTK polyline.
+//!
+//! Curvature sign (one convention for every file and `strand section --curvature`): in a planar
+//! scene the signed `kappa_z = (r' x r'') . Z / |r'|^2`, positive when the strand turns
+//! counter-clockwise seen from +Z (toward +y for a strand along +x), so the paper's hanging
+//! cantilever (along +x under gravity along -y, convex side toward +y) has negative curvature;
+//! in a 3D scene the magnitude `|r' x r''| / |r'|^2`.
+
+use std::path::Path;
+
+use strand_ancf::beam::{Beam, ElementKind, PointState};
+use strand_core::{SectionLaw, Station, WireState};
+
+use crate::output::{Csv, number, write_vtk_polyline};
+
+/// One row of `centerline.csv`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Row {
+    /// Material coordinate (m).
+    pub s: f64,
+    /// Position (m).
+    pub position: [f64; 3],
+    /// Curvature (1/m; the module's sign convention).
+    pub curvature: f64,
+    /// Axial force EA eps (N).
+    pub tension: f64,
+    /// Secant bending stiffness |M| / |kappa| (N m^2); at zero curvature the tangent.
+    pub stiffness: f64,
+    /// Curvature components (kappa_y, kappa_z) (1/m).
+    kappa: [f64; 2],
+    /// Axial strain.
+    eps: f64,
+    /// Index of the bending point whose slip state this row uses.
+    point: usize,
+}
+
+/// The rows of `centerline.csv` for the state `(q, slip, points)`: s = 0, every bending point,
+/// s = L. The ends take the elements' fields there and the slip state of the nearest bending
+/// point; a row that cannot be evaluated (a degenerate element) is left out.
+pub(crate) fn rows(beam: &Beam, q: &[f64], slip: &[f64], points: &[PointState]) -> Vec<Row> {
+    let law = beam.law();
+    let ea = law.axial_stiffness();
+    let mut out = Vec::with_capacity(points.len() + 2);
+    let end = |x: f64, point: usize| {
+        beam.section_at(q, slip, x, point).ok().map(|p| Row {
+            s: p.x,
+            position: p.position,
+            curvature: 0.0,
+            tension: ea * p.eps,
+            stiffness: 0.0,
+            kappa: [p.kappa_y, p.kappa_z],
+            eps: p.eps,
+            point,
+        })
+    };
+    out.extend(end(0.0, 0));
+    for (i, pt) in points.iter().enumerate() {
+        out.push(Row {
+            s: pt.x,
+            position: beam.sample(q, pt.x).0,
+            curvature: 0.0,
+            tension: ea * pt.eps,
+            stiffness: 0.0,
+            kappa: [pt.kappa_y, pt.kappa],
+            eps: pt.eps,
+            point: i,
+        });
+    }
+    out.extend(end(beam.length(), points.len().saturating_sub(1)));
+    let planar = beam.spec().element == ElementKind::Planar;
+    for r in &mut out {
+        let sl = beam.point_slip(slip, r.point);
+        let st = law.station(r.s);
+        let [ky, kz] = r.kappa;
+        r.curvature = if planar { kz } else { ky.hypot(kz) };
+        r.stiffness = secant(law, &st, r.eps, r.kappa, sl);
+    }
+    out
+}
+
+/// Secant stiffness |M| / |kappa| of the law at `(eps, kappa)` with slip state `sl`; at zero
+/// curvature its limit, the tangent.
+fn secant(law: &SectionLaw, st: &Station, eps: f64, [ky, kz]: [f64; 2], sl: &[f64]) -> f64 {
+    if ky == 0.0 {
+        // Planar bending (or none): the planar law, whose secant at zero is the tangent.
+        return law.planar_secant(st, eps, kz, sl);
+    }
+    let mut trial = vec![0.0; sl.len()];
+    let r = law.vector(st, eps, [ky, kz], sl, &mut trial);
+    r.moment[0].hypot(r.moment[1]) / ky.hypot(kz)
+}
+
+/// Writes `centerline.csv` and `wires.csv` for `rows` of the state with slip state `slip`;
+/// returns the number of non-finite values left empty.
+pub(crate) fn write(beam: &Beam, rows: &[Row], slip: &[f64], dir: &Path) -> Result<usize, String> {
+    let law = beam.law();
+    let p = dir.join("centerline.csv");
+    let e = |e: std::io::Error| format!("writing {}: {e}", p.display());
+    let mut c = Csv::create(
+        &p,
+        &[
+            "s",
+            "x",
+            "y",
+            "z",
+            "curvature",
+            "tension",
+            "bending_stiffness",
+        ],
+    )
+    .map_err(e)?;
+    let pw = dir.join("wires.csv");
+    let ew = |e: std::io::Error| format!("writing {}: {e}", pw.display());
+    let mut wires =
+        Csv::create(&pw, &["s", "wire", "phase", "critical_curvature", "state"]).map_err(ew)?;
+    let planar = beam.spec().element == ElementKind::Planar;
+    for r in rows {
+        let [x, y, z] = r.position;
+        c.row(&[r.s, x, y, z, r.curvature, r.tension, r.stiffness])
+            .map_err(e)?;
+        // The per-wire table, at the bending points (not the ends): phases from the neutral
+        // axis of the current bending direction, the planar convention for the planar
+        // element, the vector law's in 3D.
+        if r.s == 0.0 || r.s == beam.length() {
+            continue;
+        }
+        let st = law.station(r.s);
+        let sl = beam.point_slip(slip, r.point);
+        let report = if planar {
+            law.planar_wires(&st, r.eps, r.kappa[1], sl)
+        } else {
+            law.vector_wires(&st, r.eps, r.kappa, sl)
+        };
+        for wr in report {
+            let state = match wr.state {
+                WireState::Stick => "stick",
+                WireState::Slip => "slip",
+            };
+            wires
+                .text_row(&[
+                    number(r.s),
+                    wr.wire.to_string(),
+                    number(wr.phase),
+                    // Empty for a wire without lever: it never slips.
+                    wr.critical_curvature.map_or(String::new(), number),
+                    state.to_string(),
+                ])
+                .map_err(ew)?;
+        }
+    }
+    let blanks = c.blanks();
+    c.finish().map_err(e)?;
+    wires.finish().map_err(ew)?;
+    Ok(blanks)
+}
+
+/// Writes the static state as `vtk/centerline_00000.vtk`, the one frame of a static run, with
+/// the rows' curvature, tension and bending stiffness as point data.
+pub(crate) fn write_vtk(rows: &[Row], dir: &Path, title: &str) -> Result<(), String> {
+    let d = dir.join("vtk");
+    std::fs::create_dir_all(&d).map_err(|e| format!("writing {}: {e}", d.display()))?;
+    let path = d.join("centerline_00000.vtk");
+    let points: Vec<[f64; 3]> = rows.iter().map(|r| r.position).collect();
+    let column = |f: fn(&Row) -> f64| rows.iter().map(f).collect::<Vec<f64>>();
+    write_vtk_polyline(
+        &path,
+        title,
+        &points,
+        &[
+            ("curvature", column(|r| r.curvature)),
+            ("tension", column(|r| r.tension)),
+            ("bending_stiffness", column(|r| r.stiffness)),
+        ],
+    )
+    .map_err(|e| format!("writing {}: {e}", path.display()))
+}
