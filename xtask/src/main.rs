@@ -10,7 +10,6 @@ mod bonded;
 mod hard;
 mod paper;
 mod pareto;
-mod plot;
 mod stiffness;
 mod validate;
 

@@ -201,7 +201,7 @@ fn tip(
     }
     summary[0]
         .tip
-        .with_context(|| format!("{}: no tip in the summary", scene.name))
+        .with_context(|| format!("{}: no tip position", scene.name))
 }
 
 fn distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {

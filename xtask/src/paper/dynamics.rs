@@ -4,9 +4,9 @@
 use super::report::{Finding, Verdict, sci};
 use super::{Figures, SceneRun};
 use crate::pareto::metrics::Tip;
-use crate::plot::{Chart, Mark, Series};
 use crate::validate::report::worst;
 use crate::validate::results::Energy;
+use strand_plot::{Chart, Mark, Series};
 
 /// Time (s) of the first frame where `v` changes sign from positive, by linear interpolation.
 fn first_crossing(t: &[f64], v: &[f64]) -> Option<f64> {

@@ -6,10 +6,10 @@ use strand_scene::Scene;
 use super::report::{Finding, Verdict, sci};
 use super::{Figures, SceneRun};
 use crate::pareto::metrics::Tip;
-use crate::plot::{Chart, Mark, Series};
 use crate::validate::checks::{self, BeamKind};
 use crate::validate::report::{worse, worst};
 use crate::validate::results::{Centerline, Energy, Table};
+use strand_plot::{Chart, Mark, Series};
 
 /// The paper's position error between its equivalent and fine models in statics (Fig. 7,
 /// "of order 1e-3 m") and within 0.5 s of the pendulum (Fig. 8, "of order 1e-2 m"), m: the
@@ -42,15 +42,16 @@ const ROOT_REGION: f64 = 0.18;
 
 /// Secant bending stiffness of a model's static result averaged over the root region,
 /// `int M ds / int |kappa| ds` over `0 <= s <= ROOT_REGION` (trapezoidal rule on the rows of
-/// `centerline.csv`), in N m^2. The moment is the `moment` column where the model writes one
+/// `centerline.csv`), in N m^2. The moment is |`moment`| where the model writes one
 /// (the fine model, measured) and `bending_stiffness |kappa|` otherwise (the section law's
 /// secant).
 fn root_stiffness(dir: &std::path::Path) -> anyhow::Result<f64> {
     let t = Table::load(&dir.join("centerline.csv"))?;
     let s = t.column("s")?;
     let kappa: Vec<f64> = t.column("curvature")?.iter().map(|k| k.abs()).collect();
-    let moment = match t.column("moment") {
-        Ok(m) => m,
+    // Magnitudes: the files sign the moment like the curvature.
+    let moment: Vec<f64> = match t.column("moment") {
+        Ok(m) => m.iter().map(|m| m.abs()).collect(),
         Err(_) => t
             .column("bending_stiffness")?
             .iter()
@@ -72,8 +73,12 @@ fn root_stiffness(dir: &std::path::Path) -> anyhow::Result<f64> {
 
 /// The largest distance of a profile and where it is: (distance, s).
 pub(crate) fn largest(p: &[(f64, f64)]) -> (f64, f64) {
-    p.iter()
-        .fold((0.0, 0.0), |m, &(s, d)| if d > m.0 { (d, s) } else { m })
+    p.iter().fold(
+        (0.0, 0.0),
+        |m, &(s, d)| {
+            if d.is_nan() || d > m.0 { (d, s) } else { m }
+        },
+    )
 }
 
 /// Fig. 7: static shapes of the equivalent and fine models, and their distance along s.

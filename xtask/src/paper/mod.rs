@@ -14,10 +14,10 @@ use anyhow::{Context, bail};
 use indicatif::ProgressBar;
 use strand_scene::{RunOptions, RunSummary, Scene, run_scene};
 
-use crate::plot::{self, Chart};
 use crate::validate::machine::Provenance;
 use crate::validate::{progress_bar, repo_root};
 use report::{Finding, PaperReport};
+use strand_plot::{self as plot, Chart};
 
 /// Options of `cargo xtask paper`.
 #[derive(Debug, Clone, Default, clap::Args)]

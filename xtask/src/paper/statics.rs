@@ -9,8 +9,8 @@ use anyhow::{Context, bail};
 use super::fine::gravity;
 use super::report::{Finding, Verdict, sci};
 use super::{Figures, SceneRun};
-use crate::plot::{Chart, Mark, Series};
 use crate::validate::results::Table;
+use strand_plot::{Chart, Mark, Series};
 
 /// The paper's Fig. 12 tensions: (x in m, N).
 const PAPER_TENSION: [(f64, f64); 3] = [(0.92, 0.149), (0.925, 0.14), (0.93, 0.13)];
@@ -206,7 +206,7 @@ pub fn figures(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Fin
         "Fig. 9",
         "the equivalent strand bends more at the root",
         format!(
-            "curvature at the first integration point (s = {:.4} m), equivalent vs traditional: {}",
+            "curvature at the root (s = {} m, the clamp), equivalent vs traditional: {}",
             eqs[0].s[0],
             root.join("; ")
         ),
@@ -349,7 +349,8 @@ pub fn figures(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Fin
         } else {
             Verdict::Differs
         },
-        "equivalent model; |curvature| at the first and last integration points",
+        "equivalent model; |curvature| at the clamp (s = 0) and the free end (s = L) of \
+         centerline.csv",
     ));
 
     // Fig. 12: tension near the tip, g = 12.

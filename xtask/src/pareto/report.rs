@@ -9,8 +9,8 @@ use strand_scene::{Analysis, Scene};
 
 use super::metrics::cheapest_within;
 use super::{Model, Point};
-use crate::plot::{self, Chart, Mark, Series};
 use crate::validate::machine::Provenance;
+use strand_plot::{self as plot, Chart, Mark, Series};
 
 /// The speed-up of the equivalent over the fine model at one fine-model run's error.
 #[derive(Debug, Clone, PartialEq, Serialize)]

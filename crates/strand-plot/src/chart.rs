@@ -1,16 +1,31 @@
-//! Charts for the reports: line and point series on linear or log-log axes, written as PNG and
-//! SVG with an embedded font (DejaVu Sans), so text renders on a machine without system fonts.
+//! Charts: line and point series on linear or log axes, written as PNG and SVG with an
+//! embedded font (DejaVu Sans), so text renders on a machine without system fonts; one chart
+//! to a file ([`save`]) or several on a grid ([`save_grid`]).
 
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
-use anyhow::{Context, anyhow};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 
-/// Pixel size of every chart.
+/// Pixel size of a chart.
 const SIZE: (u32, u32) = (900, 560);
+
+/// A chart that could not be drawn or written.
+#[derive(Debug, thiserror::Error)]
+#[error("{path}: {message}")]
+pub struct PlotError {
+    /// The file.
+    pub path: String,
+    /// What failed.
+    pub message: String,
+}
+
+/// A drawing error of plotters, as text (its error types borrow the backend).
+fn draw_err<E: std::fmt::Debug>(e: E) -> String {
+    format!("{e:?}")
+}
 
 /// How a series is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -23,6 +38,8 @@ pub enum Mark {
     Points,
     /// Hollow circles.
     Rings,
+    /// Small filled squares, for dense maps (many points side by side).
+    Dots,
     /// Solid line with large hollow circles at the points (a Pareto front).
     Front,
 }
@@ -86,6 +103,8 @@ pub struct Chart {
     pub equal_aspect: bool,
     /// A line of text inside the plot area, e.g. what is not available.
     pub note: Option<String>,
+    /// The y axis's range instead of the data's (linear axes).
+    pub y_range: Option<(f64, f64)>,
 }
 
 /// The palette: colour-blind-safe (Okabe-Ito) plus black.
@@ -113,26 +132,59 @@ pub fn register_fonts() {
 }
 
 /// Writes `chart` as `dir/stem.png` and `dir/stem.svg`; returns both paths.
-pub fn save(chart: &Chart, dir: &Path, stem: &str) -> anyhow::Result<Vec<PathBuf>> {
+pub fn save(chart: &Chart, dir: &Path, stem: &str) -> Result<Vec<PathBuf>, PlotError> {
+    save_grid(std::slice::from_ref(chart), 1, dir, stem)
+}
+
+/// Writes `charts` on a grid of `columns` columns (each cell the size of one chart) as
+/// `dir/stem.png` and `dir/stem.svg`; returns both paths.
+pub fn save_grid(
+    charts: &[Chart],
+    columns: usize,
+    dir: &Path,
+    stem: &str,
+) -> Result<Vec<PathBuf>, PlotError> {
     register_fonts();
-    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let fail = |p: &Path| {
+        let path = p.display().to_string();
+        move |message: String| PlotError {
+            path: path.clone(),
+            message,
+        }
+    };
+    std::fs::create_dir_all(dir).map_err(|e| fail(dir)(e.to_string()))?;
+    let columns = columns.clamp(1, charts.len().max(1));
+    let rows = charts.len().div_ceil(columns).max(1);
+    let size = (SIZE.0 * columns as u32, SIZE.1 * rows as u32);
     let png = dir.join(format!("{stem}.png"));
     let svg = dir.join(format!("{stem}.svg"));
     {
-        let root = BitMapBackend::new(&png, SIZE).into_drawing_area();
-        render(&root, chart).with_context(|| format!("drawing {}", png.display()))?;
-        root.present()
-            .map_err(|e| anyhow!("{e:?}"))
-            .with_context(|| format!("writing {}", png.display()))?;
+        let root = BitMapBackend::new(&png, size).into_drawing_area();
+        draw_grid(&root, charts, rows, columns).map_err(fail(&png))?;
+        root.present().map_err(|e| fail(&png)(draw_err(e)))?;
     }
     {
-        let root = SVGBackend::new(&svg, SIZE).into_drawing_area();
-        render(&root, chart).with_context(|| format!("drawing {}", svg.display()))?;
-        root.present()
-            .map_err(|e| anyhow!("{e:?}"))
-            .with_context(|| format!("writing {}", svg.display()))?;
+        let root = SVGBackend::new(&svg, size).into_drawing_area();
+        draw_grid(&root, charts, rows, columns).map_err(fail(&svg))?;
+        root.present().map_err(|e| fail(&svg)(draw_err(e)))?;
     }
     Ok(vec![png, svg])
+}
+
+fn draw_grid<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    charts: &[Chart],
+    rows: usize,
+    columns: usize,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE).map_err(draw_err)?;
+    for (cell, chart) in root.split_evenly((rows, columns)).iter().zip(charts) {
+        render(cell, chart)?;
+    }
+    Ok(())
 }
 
 /// The range of the finite values (positive ones only for log axes), padded by 5 %
@@ -192,8 +244,8 @@ fn tick_label(range: (f64, f64)) -> impl Fn(&f64) -> String {
 
 /// Draws the series of `chart` on an already built chart context (linear or log axes).
 macro_rules! draw_series {
-    ($ctx:expr, $chart:expr, $keep:expr) => {{
-        let err = |e| anyhow!("{e:?}");
+    ($ctx:expr, $chart:expr, $keep:expr, $corner:expr) => {{
+        let err = draw_err;
         for s in &$chart.series {
             let c = color(s.color);
             let pts: Vec<(f64, f64)> = s.points.iter().copied().filter($keep).collect();
@@ -210,6 +262,11 @@ macro_rules! draw_series {
                 Mark::Rings => $ctx
                     .draw_series(pts.iter().map(|&p| Circle::new(p, 5, c.stroke_width(2))))
                     .map_err(err)?,
+                Mark::Dots => $ctx
+                    .draw_series(pts.iter().map(|&p| {
+                        EmptyElement::at(p) + Rectangle::new([(-2, -3), (2, 3)], c.filled())
+                    }))
+                    .map_err(err)?,
                 Mark::Front => {
                     $ctx.draw_series(pts.iter().map(|&p| Circle::new(p, 9, c.stroke_width(2))))
                         .map_err(err)?;
@@ -223,7 +280,7 @@ macro_rules! draw_series {
                 // points.
                 let (a, b, w) = match mark {
                     Mark::Dashed => ((0, 7), (13, 20), 2),
-                    Mark::Points | Mark::Rings => ((7, 10), (10, 13), 7),
+                    Mark::Points | Mark::Rings | Mark::Dots => ((7, 10), (10, 13), 7),
                     _ => ((0, 10), (10, 20), 2),
                 };
                 anno.label(s.label.clone()).legend(move |(x, y)| {
@@ -235,7 +292,7 @@ macro_rules! draw_series {
         }
         if $chart.series.iter().any(|s| !s.label.is_empty()) {
             $ctx.configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
+                .position($corner)
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK.mix(0.5))
                 .label_font(("sans-serif", 14))
@@ -245,15 +302,18 @@ macro_rules! draw_series {
     }};
 }
 
-fn render<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> anyhow::Result<()>
+fn render<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, chart: &Chart) -> Result<(), String>
 where
     DB::ErrorType: 'static,
 {
-    let err = |e| anyhow!("{e:?}");
+    let err = draw_err;
     root.fill(&WHITE).map_err(err)?;
     let all = || chart.series.iter().flat_map(|s| s.points.iter());
     let xr = range(all().map(|p| p.0), chart.log);
-    let yr = range(all().map(|p| p.1), chart.log || chart.log_y);
+    let yr = match chart.y_range {
+        Some(r) if !(chart.log || chart.log_y) => r,
+        _ => range(all().map(|p| p.1), chart.log || chart.log_y),
+    };
     let mut builder = ChartBuilder::on(root);
     builder
         .caption(&chart.title, ("sans-serif", 20))
@@ -262,7 +322,7 @@ where
         .y_label_area_size(78);
     let (fx, fy) = (tick_label(xr), tick_label(yr));
     macro_rules! mesh_and_series {
-        ($ctx:expr, $keep:expr) => {{
+        ($ctx:expr, $keep:expr, $corner:expr) => {{
             let mut ctx = $ctx;
             ctx.configure_mesh()
                 .x_desc(&chart.x_label)
@@ -273,7 +333,7 @@ where
                 .axis_desc_style(("sans-serif", 16))
                 .draw()
                 .map_err(err)?;
-            draw_series!(ctx, chart, $keep);
+            draw_series!(ctx, chart, $keep, $corner);
             note(&ctx.plotting_area().strip_coord_spec(), chart)?;
         }};
     }
@@ -282,14 +342,16 @@ where
             builder
                 .build_cartesian_2d((xr.0..xr.1).log_scale(), (yr.0..yr.1).log_scale())
                 .map_err(err)?,
-            |p: &(f64, f64)| p.0 > 0.0 && p.1 > 0.0
+            |p: &(f64, f64)| p.0 > 0.0 && p.1 > 0.0,
+            legend_corner(chart, xr, yr, (true, true))
         );
     } else if chart.log_y {
         mesh_and_series!(
             builder
                 .build_cartesian_2d(xr.0..xr.1, (yr.0..yr.1).log_scale())
                 .map_err(err)?,
-            |p: &(f64, f64)| p.0.is_finite() && p.1 > 0.0
+            |p: &(f64, f64)| p.0.is_finite() && p.1 > 0.0,
+            legend_corner(chart, xr, yr, (false, true))
         );
     } else {
         let (xr, yr) = if chart.equal_aspect {
@@ -302,14 +364,53 @@ where
             builder
                 .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
                 .map_err(err)?,
-            |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite()
+            |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite(),
+            legend_corner(chart, xr, yr, (false, false))
         );
     }
     Ok(())
 }
 
+/// The corner of the plot area where the legend hides the fewest points: of the four boxes of
+/// 40 % of the width and 30 % of the height at the corners (on the axes' scales, `log` for a
+/// log axis), the one holding the fewest; the upper right on a tie.
+fn legend_corner(
+    chart: &Chart,
+    x: (f64, f64),
+    y: (f64, f64),
+    log: (bool, bool),
+) -> SeriesLabelPosition {
+    let unit = |v: f64, (lo, hi): (f64, f64), log: bool| {
+        if log {
+            (v.ln() - lo.ln()) / (hi.ln() - lo.ln())
+        } else {
+            (v - lo) / (hi - lo)
+        }
+    };
+    let mut counts = [0usize; 4];
+    for p in chart.series.iter().flat_map(|s| s.points.iter()) {
+        let (u, v) = (unit(p.0, x, log.0), unit(p.1, y, log.1));
+        if !(u.is_finite() && v.is_finite()) {
+            continue;
+        }
+        let (left, right, low, high) = (u < 0.4, u > 0.6, v < 0.3, v > 0.7);
+        for (i, inside) in [high && right, high && left, low && right, low && left]
+            .into_iter()
+            .enumerate()
+        {
+            counts[i] += usize::from(inside);
+        }
+    }
+    match (0..4).min_by_key(|&i| counts[i]).unwrap_or(0) {
+        0 => SeriesLabelPosition::UpperRight,
+        1 => SeriesLabelPosition::UpperLeft,
+        2 => SeriesLabelPosition::LowerRight,
+        _ => SeriesLabelPosition::LowerLeft,
+    }
+}
+
 /// Prints the chart's note at the lower left of the plot area.
-fn note<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, chart: &Chart) -> anyhow::Result<()> {
+fn note<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, chart: &Chart) -> Result<(), String> {
     if let Some(text) = &chart.note {
         let (_, h) = area.dim_in_pixel();
         for (i, line) in text.lines().rev().enumerate() {
@@ -318,7 +419,7 @@ fn note<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, chart: &Chart) -> any
                 &("sans-serif", 14).into_font().color(&RGBColor(150, 0, 0)),
                 (8, h as i32 - 20 - 18 * i as i32),
             )
-            .map_err(|e| anyhow!("{e:?}"))?;
+            .map_err(draw_err)?;
         }
     }
     Ok(())
@@ -346,7 +447,7 @@ mod tests {
 
     #[test]
     fn writes_png_and_svg_with_text() {
-        let dir = std::env::temp_dir().join(format!("xtask-plot-{}", std::process::id()));
+        let dir = std::env::temp_dir().join(format!("strand-plot-{}", std::process::id()));
         let chart = Chart {
             title: "test".into(),
             x_label: "x (m)".into(),

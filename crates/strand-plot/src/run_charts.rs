@@ -1,0 +1,310 @@
+//! The charts of a run (`strand run --plot`), drawn from its result files so that they show
+//! exactly what the files hold (a model that failed draws what it wrote): the shape, the
+//! curvature and the bending stiffness along s (with K_min and K_max), each wire's stick/slip
+//! state along s, and for dynamics the tip's path and the energies; one chart to a file, and an
+//! overview with all of them.
+
+use std::path::{Path, PathBuf};
+
+use strand_scene::{Analysis, RunSummary, Scene};
+
+use crate::chart::{Chart, Mark, PlotError, Series, save, save_grid};
+use crate::table::{Table, TextTable};
+
+/// Palette index of each model's curves.
+fn model_color(model: &str) -> usize {
+    match model {
+        "equivalent" => 0,
+        "traditional" => 1,
+        _ => 2,
+    }
+}
+
+/// A model's name in a legend, marked when its run failed.
+fn label(s: &RunSummary) -> String {
+    if s.failed() {
+        format!("{} (failed: what it wrote)", s.model)
+    } else {
+        s.model.clone()
+    }
+}
+
+/// Draws the charts of the run of `scene` whose model folders are in `out` and whose
+/// summaries are `summaries`, into `out/plots/`; returns the files written.
+pub fn plot_run(
+    scene: &Scene,
+    out: &Path,
+    summaries: &[RunSummary],
+) -> Result<Vec<PathBuf>, PlotError> {
+    let dir = out.join("plots");
+    let read = |s: &RunSummary, file: &str| Table::load(&out.join(&s.model).join(file)).ok();
+    let lines: Vec<(&RunSummary, Table)> = summaries
+        .iter()
+        .filter_map(|s| read(s, "centerline.csv").map(|t| (s, t)))
+        .collect();
+    let name = &scene.name;
+    let mut charts: Vec<(String, Chart)> = Vec::new();
+
+    // Shape: the two axes along which the strand spreads most.
+    let axes = spread_axes(lines.iter().map(|(_, t)| t));
+    let axis_name = ["x", "y", "z"];
+    let shape = Chart {
+        title: format!("{name}: shape at the end"),
+        x_label: format!("{} (m)", axis_name[axes.0]),
+        y_label: format!("{} (m)", axis_name[axes.1]),
+        series: lines
+            .iter()
+            .map(|(s, t)| {
+                Series::xy(
+                    label(s),
+                    &t.column(axis_name[axes.0]),
+                    &t.column(axis_name[axes.1]),
+                    Mark::Line,
+                    model_color(&s.model),
+                )
+            })
+            .collect(),
+        equal_aspect: true,
+        ..Chart::default()
+    };
+    charts.push(("shape".into(), shape));
+
+    let along = |column: &str, keep: &dyn Fn(&RunSummary, &Table, usize) -> bool| {
+        lines
+            .iter()
+            .map(|(s, t)| {
+                let (x, y) = (t.column("s"), t.column(column));
+                let points = (0..x.len())
+                    .filter(|&i| keep(s, t, i))
+                    .map(|i| (x[i], y[i]))
+                    .collect();
+                Series::new(label(s), points, Mark::Line, model_color(&s.model))
+            })
+            .collect::<Vec<_>>()
+    };
+    let curvature = Chart {
+        title: format!("{name}: curvature along the strand"),
+        x_label: "s (m)".into(),
+        y_label: if scene.is_planar() {
+            "curvature kappa_z (1/m)".into()
+        } else {
+            "|curvature| (1/m)".into()
+        },
+        series: along("curvature", &|_, _, _| true),
+        ..Chart::default()
+    };
+    charts.push(("curvature".into(), curvature));
+
+    // Bending stiffness, with the section's bounds. The fine model's measured M / kappa is
+    // drawn where its curvature is above 1 % of its largest (near zero curvature it is the
+    // ratio of two small, noisy numbers).
+    let strand = &scene.strand;
+    let (k_min, k_max) = (
+        strand.min_bending_stiffness(scene.section.base_stiffness),
+        strand.max_bending_stiffness(scene.section.base_stiffness),
+    );
+    let bent = |s: &RunSummary, t: &Table, i: usize| {
+        if s.model != "fine" {
+            return true;
+        }
+        let k = t.column("curvature");
+        let top = k.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        k[i].abs() > 1e-2 * top
+    };
+    let mut series = along("bending_stiffness", &bent);
+    let ends = (0.0, strand.length());
+    if strand.layer().is_some() {
+        for (k, what, color) in [(k_min, "K_min", 6), (k_max, "K_max", 3)] {
+            series.push(Series::new(
+                format!("{what} = {} N m^2", short(k)),
+                vec![(ends.0, k), (ends.1, k)],
+                Mark::Dashed,
+                color,
+            ));
+        }
+    }
+    let stiffness = Chart {
+        title: format!("{name}: bending stiffness M/kappa along the strand"),
+        x_label: "s (m)".into(),
+        y_label: "bending stiffness (N m^2)".into(),
+        series,
+        note: lines
+            .iter()
+            .any(|(s, _)| s.model == "fine")
+            .then(|| "fine model: where |kappa| > 1 % of its largest".to_string()),
+        ..Chart::default()
+    };
+    charts.push(("stiffness".into(), stiffness));
+
+    // Stick/slip maps: the beams' wires.csv, the fine model's contacts.csv; sticking points
+    // drawn last, over the slipping ones (slip is the common state of a bent strand).
+    for s in summaries {
+        let (file, states): (&str, &[(&str, usize)]) = if s.model == "fine" {
+            ("contacts.csv", &[("slip", 1), ("open", 4), ("stick", 0)])
+        } else {
+            ("wires.csv", &[("slip", 1), ("stick", 0)])
+        };
+        let Ok(rows) = TextTable::load(&out.join(&s.model).join(file)) else {
+            continue;
+        };
+        if rows.is_empty() {
+            continue;
+        }
+        let wires = rows
+            .rows()
+            .filter_map(|r| r.number("wire"))
+            .fold(1.0, f64::max);
+        let series = states
+            .iter()
+            .map(|(state, color)| {
+                let points = rows
+                    .rows()
+                    .filter(|r| r.get("state") == Some(state))
+                    .filter_map(|r| Some((r.number("s")?, r.number("wire")?)))
+                    .collect();
+                Series::new(*state, points, Mark::Dots, *color)
+            })
+            .filter(|s| !s.points.is_empty())
+            .collect();
+        charts.push((
+            format!("stick-slip-{}", s.model),
+            Chart {
+                title: format!("{name}: wire states along the strand, {}", label(s)),
+                x_label: "s (m)".into(),
+                y_label: "wire".into(),
+                series,
+                // Room above the last wire for the legend.
+                y_range: Some((0.4, wires + 1.4)),
+                ..Chart::default()
+            },
+        ));
+    }
+
+    if matches!(scene.analysis, Analysis::Dynamic(_)) {
+        let tips: Vec<(&RunSummary, Table)> = summaries
+            .iter()
+            .filter_map(|s| read(s, "tip.csv").map(|t| (s, t)))
+            .collect();
+        let tip_axes = spread_axes(tips.iter().map(|(_, t)| t));
+        charts.push((
+            "tip".into(),
+            Chart {
+                title: format!("{name}: path of the tip"),
+                x_label: format!("{} (m)", axis_name[tip_axes.0]),
+                y_label: format!("{} (m)", axis_name[tip_axes.1]),
+                series: tips
+                    .iter()
+                    .map(|(s, t)| {
+                        Series::xy(
+                            label(s),
+                            &t.column(axis_name[tip_axes.0]),
+                            &t.column(axis_name[tip_axes.1]),
+                            Mark::Line,
+                            model_color(&s.model),
+                        )
+                    })
+                    .collect(),
+                equal_aspect: true,
+                ..Chart::default()
+            },
+        ));
+        for s in summaries {
+            let Some(e) = read(s, "energy.csv") else {
+                continue;
+            };
+            let t = e.column("t");
+            let series = [
+                ("kinetic", 0),
+                ("gravity", 1),
+                ("elastic", 2),
+                ("dissipated", 3),
+                ("total", 6),
+            ]
+            .iter()
+            .map(|(c, color)| Series::xy(*c, &t, &e.column(c), Mark::Line, *color))
+            .collect();
+            charts.push((
+                format!("energy-{}", s.model),
+                Chart {
+                    title: format!("{name}: energies, {}", label(s)),
+                    x_label: "t (s)".into(),
+                    y_label: "energy (J)".into(),
+                    series,
+                    ..Chart::default()
+                },
+            ));
+        }
+    }
+
+    let mut files = Vec::new();
+    for (stem, chart) in &charts {
+        files.extend(save(chart, &dir, stem)?);
+    }
+    let all: Vec<Chart> = charts.into_iter().map(|(_, c)| c).collect();
+    files.extend(save_grid(&all, 2, &dir, "overview")?);
+    Ok(files)
+}
+
+/// `v` with 4 significant digits: plain between 1e-3 and 1e4, with an exponent outside.
+fn short(v: f64) -> String {
+    let a = v.abs();
+    if (1e-3..1e4).contains(&a) {
+        let digits = (3 - a.log10().floor() as i32).max(0) as usize;
+        format!("{v:.digits$}")
+    } else {
+        format!("{v:.3e}")
+    }
+}
+
+/// The two coordinates (0 = x, 1 = y, 2 = z), in order, along which the points of the `x`,
+/// `y`, `z` columns spread most: the plane of a planar scene, the main plane of motion else.
+fn spread_axes<'a>(tables: impl Iterator<Item = &'a Table>) -> (usize, usize) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for t in tables {
+        for (a, c) in ["x", "y", "z"].iter().enumerate() {
+            for v in t.column(c).into_iter().filter(|v| v.is_finite()) {
+                lo[a] = lo[a].min(v);
+                hi[a] = hi[a].max(v);
+            }
+        }
+    }
+    let spread = |a: usize| (hi[a] - lo[a]).max(0.0);
+    // The axis with the least spread is left out (z on a tie: the planar convention).
+    let out = (0..3)
+        .rev()
+        .min_by(|&a, &b| spread(a).total_cmp(&spread(b)))
+        .unwrap_or(2);
+    match out {
+        0 => (1, 2),
+        1 => (0, 2),
+        _ => (0, 1),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spread_axes_leave_out_the_flattest() {
+        let t = |rows: &str| {
+            let p = std::env::temp_dir().join(format!(
+                "strand-plot-axes-{}-{}.csv",
+                std::process::id(),
+                rows.len()
+            ));
+            std::fs::write(&p, format!("x,y,z\n{rows}")).unwrap();
+            let t = Table::load(&p).unwrap();
+            std::fs::remove_file(p).unwrap();
+            t
+        };
+        assert_eq!(spread_axes([t("0,0,0\n1,-2,0\n")].iter()), (0, 1));
+        assert_eq!(spread_axes([t("0,0,0\n1,0,-2\n")].iter()), (0, 2));
+        assert_eq!(spread_axes([t("0,0,0\n0,1,-2\n")].iter()), (1, 2));
+        assert_eq!(spread_axes(std::iter::empty()), (0, 1));
+        assert_eq!(short(0.05334), "0.05334");
+        assert_eq!(short(1.94), "1.940");
+        assert_eq!(short(2.5e-5), "2.500e-5");
+    }
+}

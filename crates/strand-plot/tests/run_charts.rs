@@ -1,0 +1,66 @@
+//! `plot_run` draws every chart of a run from its files: a static and a dynamic run of the
+//! Table 1 strand (equivalent and traditional beams), PNG and SVG with their text.
+
+use strand_scene::{RunOptions, Scene, run_scene};
+
+fn scene(analysis: &str) -> Scene {
+    let text = format!(
+        r#"{{
+        "name": "plot-test",
+        "strand": {{ "length": 0.4,
+            "core": {{ "diameter": 3e-3, "youngs_modulus": 2e8, "poisson_ratio": 0.3, "density": 7801 }},
+            "layers": [ {{ "wires": 6, "diameter": 2e-3, "lay_angle_deg": 20,
+                           "youngs_modulus": 2e8, "poisson_ratio": 0.3, "density": 7801 }} ] }},
+        "law": "hysteretic",
+        "supports": [ {{ "at": "start", "kind": "clamped" }} ],
+        "loads": {{ "gravity": [0, -8, 0] }},
+        "analysis": {analysis},
+        "models": {{ "equivalent": {{ "elements": 4 }}, "traditional": {{ "elements": 4 }} }}
+    }}"#
+    );
+    Scene::parse(&text).unwrap()
+}
+
+#[test]
+fn a_run_is_drawn_from_its_files() {
+    for (tag, analysis, stems) in [
+        (
+            "static",
+            r#"{ "kind": "static" }"#,
+            &[
+                "shape",
+                "curvature",
+                "stiffness",
+                "stick-slip-equivalent",
+                "overview",
+            ][..],
+        ),
+        (
+            "dynamic",
+            r#"{ "kind": "dynamic", "duration": 0.02, "integrator": "generalized-alpha",
+                 "time_step": 1e-3, "output_interval": 2e-3 }"#,
+            &["tip", "energy-equivalent", "energy-traditional", "overview"][..],
+        ),
+    ] {
+        let out = std::env::temp_dir().join(format!("strand-plot-{tag}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&out);
+        let scene = scene(analysis);
+        let opts = RunOptions {
+            out: out.clone(),
+            vtk: false,
+        };
+        let s = run_scene(&scene, &opts, &mut |_, _| {}).unwrap();
+        let files = strand_plot::plot_run(&scene, &out, &s).unwrap();
+        for stem in stems {
+            let png = out.join("plots").join(format!("{stem}.png"));
+            let svg = out.join("plots").join(format!("{stem}.svg"));
+            assert!(files.contains(&png) && files.contains(&svg), "{stem}");
+            assert!(std::fs::metadata(&png).unwrap().len() > 5000, "{stem}");
+            let text = std::fs::read_to_string(&svg).unwrap();
+            assert!(text.contains("plot-test"), "{stem}: the title is drawn");
+        }
+        let stiffness = std::fs::read_to_string(out.join("plots/stiffness.svg")).unwrap();
+        assert!(stiffness.contains("K_min") && stiffness.contains("K_max"));
+        let _ = std::fs::remove_dir_all(out);
+    }
+}
