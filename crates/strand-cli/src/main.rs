@@ -74,6 +74,11 @@ enum Command {
         /// a time series that ParaView opens.
         #[arg(long)]
         vtk: bool,
+        /// Also draw the results as PNG and SVG in `DIR/plots/`: shape, curvature and bending
+        /// stiffness along the strand (with K_min and K_max), each wire's stick/slip state
+        /// along it, for dynamics the tip's path and the energies, and an overview of all.
+        #[arg(long)]
+        plot: bool,
         /// Run only this model of the scene (`equivalent`, `traditional` or `fine`);
         /// repeat for several. Default: every model the scene names.
         #[arg(long = "model", value_name = "MODEL")]
@@ -110,6 +115,15 @@ enum Command {
     },
 }
 
+/// `println!` that ignores a closed standard output (e.g. piped into `head`): the results are
+/// in the files, and a failed print is no reason to stop.
+macro_rules! say {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($t)*);
+    }};
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli) {
@@ -137,7 +151,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             vtk,
             models,
             max_steps,
-        } => run_scene(&scene, out, vtk, &models, max_steps),
+            plot,
+        } => run_scene(&scene, out, vtk, plot, &models, max_steps),
         Command::Bend {
             scene,
             tension,
@@ -165,26 +180,38 @@ fn bend(path: &std::path::Path, opts: strand_scene::BendingOptions) -> anyhow::R
         strand_scene::run_bending(&scene, &opts, &mut |_, f| progress.update("bending", f));
     progress.bar.finish_and_clear();
     let s = result?;
-    println!(
+    say!(
         "virtual bending test of `{}`: T = {} N (strain {:.3e}), {} pitches, {} segments per pitch, {:.1} s",
-        s.scene, s.tension, s.strain, s.pitches, s.segments_per_pitch, s.wall_time
+        s.scene,
+        s.tension,
+        s.strain,
+        s.pitches,
+        s.segments_per_pitch,
+        s.wall_time
     );
-    println!(
+    say!(
         "K_min = {:.4e} N m^2, K_max = {:.4e} N m^2 (stick stiffness `{}`); law `{}`",
-        s.k_min, s.k_max, s.stick_stiffness, s.law
+        s.k_min,
+        s.k_max,
+        s.stick_stiffness,
+        s.law
     );
-    println!(
+    say!(
         "{:>12} {:>12} {:>12} {:>10} {:>10}",
-        "kappa 1/m", "M fine N m", "M law N m", "K/K_max", "law/K_max"
+        "kappa 1/m",
+        "M fine N m",
+        "M law N m",
+        "K/K_max",
+        "law/K_max"
     );
     for [k, m, ml] in &s.points {
-        println!(
+        say!(
             "{k:>12.4e} {m:>12.4e} {ml:>12.4e} {:>10.4} {:>10.4}",
             m / k / s.k_max,
             ml / k / s.k_max
         );
     }
-    println!("wrote {}", opts.out.join("bending.csv").display());
+    say!("wrote {}", opts.out.join("bending.csv").display());
     Ok(())
 }
 
@@ -238,6 +265,7 @@ fn run_scene(
     path: &std::path::Path,
     out: PathBuf,
     vtk: bool,
+    plot: bool,
     only: &[String],
     max_steps: Option<usize>,
 ) -> anyhow::Result<()> {
@@ -286,7 +314,7 @@ fn run_scene(
         let tip = s.tip.map_or(String::new(), |t| {
             format!("; tip ({:.6}, {:.6}, {:.6}) m", t[0], t[1], t[2])
         });
-        println!(
+        say!(
             "{:<12} {} law, {} dofs, {} steps, {} Newton iterations, {:.3} s{tip}{}",
             s.model,
             s.law,
@@ -299,17 +327,25 @@ fn run_scene(
             )),
         );
         for w in &s.warnings {
-            println!("{:<12} warning: {w}", "");
+            say!("{:<12} warning: {w}", "");
         }
         if let (Some(reason), Some(error)) = (s.reason, &s.error) {
-            println!(
+            say!(
                 "{:<12} FAILED ({reason}): {error}; files in {}",
                 "",
                 out.join(&s.model).display()
             );
         }
     }
-    println!("results in {}", out.display());
+    say!("results in {}", out.display());
+    if plot {
+        let files = strand_plot::plot_run(&scene, &out, &summaries)?;
+        say!(
+            "{} charts (PNG and SVG) in {}",
+            files.len() / 2,
+            out.join("plots").display()
+        );
+    }
     let failed: Vec<&str> = summaries
         .iter()
         .filter(|s| s.failed())
@@ -360,7 +396,7 @@ fn section(
                 obj.insert(k.clone(), x.clone());
             }
         }
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        say!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(());
     }
     print_summary(&scene, &summary);
@@ -377,7 +413,7 @@ fn opt(v: Option<f64>, unit: &str) -> String {
 fn print_summary(scene: &Scene, s: &StrandSummary) {
     let strand = &scene.strand;
     let m = strand.layer().map_or(0, |l| l.wires());
-    println!(
+    say!(
         "strand `{}`: 1+{m}, L = {} m, friction {}",
         scene.name,
         strand.length(),
@@ -423,12 +459,12 @@ fn print_summary(scene: &Scene, s: &StrandSummary) {
         ("traditional EA", format!("{:.6e} N", s.ea_traditional)),
     ];
     for (k, v) in rows {
-        println!("  {k:<36} {v}");
+        say!("  {k:<36} {v}");
     }
 }
 
 fn print_point(p: &SectionPoint) {
-    println!(
+    say!(
         "\n{} law at x = {} m, strain {:e}, curvature {:e} 1/m{}",
         p.law,
         p.at,
@@ -460,14 +496,19 @@ fn print_point(p: &SectionPoint) {
         ("full slip at curvature", opt(p.full_slip_curvature, "1/m")),
     ];
     for (k, v) in rows {
-        println!("  {k:<36} {v}");
+        say!("  {k:<36} {v}");
     }
     if p.wires.is_empty() {
         return;
     }
-    println!(
+    say!(
         "\n  {:>4} {:>10} {:>14} {:>14} {:>14} {:>6}",
-        "wire", "phase/deg", "K_stick/N m^2", "M_slip/N m", "kappa_c/(1/m)", "state"
+        "wire",
+        "phase/deg",
+        "K_stick/N m^2",
+        "M_slip/N m",
+        "kappa_c/(1/m)",
+        "state"
     );
     for w in &p.wires {
         let kc = w
@@ -477,7 +518,7 @@ fn print_point(p: &SectionPoint) {
             strand_core::WireState::Stick => "stick",
             strand_core::WireState::Slip => "slip",
         };
-        println!(
+        say!(
             "  {:>4} {:>10.3} {:>14.6e} {:>14.6e} {:>14} {:>6}",
             w.wire,
             w.phase.to_degrees(),
