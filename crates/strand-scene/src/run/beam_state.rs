@@ -37,8 +37,9 @@ pub(crate) struct Row {
 }
 
 /// The rows of `centerline.csv` for the state `(q, slip, points)`: s = 0, every bending point,
-/// s = L. The ends take the elements' fields there and the slip state of the nearest bending
-/// point; a row that cannot be evaluated (a degenerate element) is left out.
+/// s = L. The ends take the elements' fields there (position, strain, curvature) and the
+/// section law's stiffness at them; with a law with slip state, the nearest bending point's
+/// stiffness. A row that cannot be evaluated (a degenerate element) is left out.
 pub(crate) fn rows(beam: &Beam, q: &[f64], slip: &[f64], points: &[PointState]) -> Vec<Row> {
     let law = beam.law();
     let ea = law.axial_stiffness();
@@ -76,6 +77,19 @@ pub(crate) fn rows(beam: &Beam, q: &[f64], slip: &[f64], points: &[PointState]) 
         let [ky, kz] = r.kappa;
         r.curvature = if planar { kz } else { ky.hypot(kz) };
         r.stiffness = secant(law, &st, r.eps, r.kappa, sl);
+    }
+    // A law with slip state has it at the bending points only: at the ends, whose curvature
+    // and state differ from the nearest point's, the stiffness is that point's (a slipped
+    // state carries a residual moment, so the law at another curvature would give a secant
+    // that is not the strand's).
+    let n = out.len();
+    if law.state_len() > 0 && n > 2 {
+        if out[0].s == 0.0 {
+            out[0].stiffness = out[1].stiffness;
+        }
+        if out[n - 1].s == beam.length() {
+            out[n - 1].stiffness = out[n - 2].stiffness;
+        }
     }
     out
 }
