@@ -30,6 +30,10 @@ pub struct StaticOptions {
     pub max_iterations: usize,
     /// Smallest load step, as a fraction of the full load, before giving up.
     pub min_step: f64,
+    /// Most load steps tried (accepted or cut) beyond `load_steps` before giving up: a path
+    /// of steps near `min_step` that converge and grow and are cut again would otherwise take
+    /// up to `1 / min_step` steps of up to `max_iterations` Newton iterations each.
+    pub max_attempts: usize,
 }
 
 impl Default for StaticOptions {
@@ -40,6 +44,7 @@ impl Default for StaticOptions {
             increment: 1e-9,
             max_iterations: 30,
             min_step: 1e-7,
+            max_attempts: 1000,
         }
     }
 }
@@ -82,6 +87,27 @@ pub enum StaticError {
         law: &'static str,
         /// What the last attempt reported.
         detail: String,
+        /// The last converged state (at load fraction `reached`), for the result files;
+        /// `None` if it could not be evaluated.
+        last: Option<Box<StaticSolution>>,
+    },
+    /// The solver tried more load steps than its budget allows.
+    #[error(
+        "no equilibrium found beyond load fraction {reached:.6} of the full load: the solver \
+         tried {tried} load steps ({cuts} of them cut, the last of {step:.3e} of the load), its \
+         budget ({law} law)"
+    )]
+    Budget {
+        /// Load fraction of the last converged state.
+        reached: f64,
+        /// Load steps tried, accepted or cut.
+        tried: usize,
+        /// Load steps cut.
+        cuts: usize,
+        /// The load step when the solver stopped (fraction of the full load).
+        step: f64,
+        /// The section law's name.
+        law: &'static str,
         /// The last converged state (at load fraction `reached`), for the result files;
         /// `None` if it could not be evaluated.
         last: Option<Box<StaticSolution>>,
@@ -176,7 +202,24 @@ pub fn solve_static(
     let mut step = 1.0 / opts.load_steps.max(1) as f64;
     let (mut steps, mut iterations, mut cuts) = (0, 0, 0);
     let mut residual = 0.0;
+    let budget = opts.load_steps.saturating_add(opts.max_attempts);
     while lambda < 1.0 {
+        if steps + cuts >= budget {
+            let last = solution(beam, &mut w, q, slip, (steps, iterations, cuts))
+                .ok()
+                .map(|mut s| {
+                    s.residual = residual;
+                    Box::new(s)
+                });
+            return Err(StaticError::Budget {
+                reached: lambda,
+                tried: steps + cuts,
+                cuts,
+                step,
+                law: beam.law().kind().name(),
+                last,
+            });
+        }
         let target = (lambda + step).min(1.0);
         w.q_try.copy_from_slice(&q);
         beam.move_supports_static(&mut w.q_try, target);

@@ -341,3 +341,64 @@ fn a_stalled_solve_keeps_its_last_equilibrium() {
     // Not the straight start: the strand hangs under the load reached.
     assert!(tip(&beam, &last.q)[1] < -0.01, "{:?}", tip(&beam, &last.q));
 }
+
+/// The solver's budget of load steps ends a solve that needs more, with its last equilibrium:
+/// on the Table 1 cantilever under g = 8 loaded in one step with 6 Newton iterations a step,
+/// a solve that took T load steps (accepted and cut, some cut) stops with
+/// `StaticError::Budget` after exactly T - 1 when the budget is T - 1, at the load fraction it
+/// had reached, and completes when the budget is T.
+#[test]
+fn the_load_step_budget_ends_a_solve_that_needs_more() {
+    use strand_ancf::statics::StaticError;
+    let s = strand(0.4, 2.0e8, 7801.0, true);
+    let beam = cantilever(
+        SectionLaw::new(&s, LawKind::Constant),
+        8,
+        s.mass_per_length(),
+        8.0,
+    );
+    let opts = |budget: usize| StaticOptions {
+        load_steps: 1,
+        max_iterations: 6,
+        max_attempts: budget - 1,
+        ..StaticOptions::default()
+    };
+    let full = solve_static(&beam, &opts(1000), &mut |_| {}).unwrap();
+    let tried = full.steps + full.cuts;
+    assert!(
+        full.cuts > 0 && full.steps > 1,
+        "{} steps, {} cuts",
+        full.steps,
+        full.cuts
+    );
+    let done = solve_static(&beam, &opts(tried), &mut |_| {}).unwrap();
+    assert_eq!(done.q, full.q);
+    match solve_static(&beam, &opts(tried - 1), &mut |_| {}) {
+        Err(StaticError::Budget {
+            reached,
+            tried: t,
+            last: Some(last),
+            ..
+        }) => {
+            assert_eq!(t, tried - 1);
+            assert!(
+                reached < 1.0 && last.steps + last.cuts == tried - 1,
+                "{reached}"
+            );
+            // The last state is an equilibrium at the fraction reached.
+            let mut force = vec![0.0; beam.coords()];
+            let mut trial = last.slip.clone();
+            beam.internal(&last.q, &last.slip, &mut trial, &mut force, None, None)
+                .unwrap();
+            let (mut r2, mut g2) = (0.0, 0.0);
+            for (i, (f, g)) in force.iter().zip(beam.gravity_force()).enumerate() {
+                if beam.free_index(i).is_some() {
+                    r2 += (f - reached * g).powi(2);
+                    g2 += g * g;
+                }
+            }
+            assert!((r2 / g2).sqrt() < 1e-6, "at {reached}");
+        }
+        other => panic!("expected the budget to end the solve: {other:?}"),
+    }
+}

@@ -326,7 +326,7 @@ fn failure_of_beam(e: &BeamError) -> Failure {
 
 fn failure_of_static(e: &StaticError) -> Failure {
     match e {
-        StaticError::Stalled { .. } => Failure::NoConvergence,
+        StaticError::Stalled { .. } | StaticError::Budget { .. } => Failure::NoConvergence,
         StaticError::Beam(b) => failure_of_beam(b),
     }
 }
@@ -387,6 +387,11 @@ fn run_static(
             let stop = Stop::new(failure_of_static(&e), e.to_string());
             // The last converged load step's state, for the files.
             if let StaticError::Stalled {
+                last: Some(last),
+                reached,
+                ..
+            }
+            | StaticError::Budget {
                 last: Some(last),
                 reached,
                 ..
