@@ -1,6 +1,7 @@
 //! Random valid scenes through the whole runner: strands of 1 to 12 wires at lay angles of 1 to
 //! 60 deg, friction 0 to 1, gravity of any direction from 0 to 1e3 m/s^2, every support, law,
-//! analysis and integrator, all three models, short runs. Each model's run ends `ok`, or
+//! analysis and integrator, all three models, the 3D fields (initial direction, velocity and
+//! angular velocity, point forces, a moving support), short runs. Each model's run ends `ok`, or
 //! `failed` with a named reason and a message; it ends (a run that does not finish within a
 //! generous bound is a hang); no file it writes holds `NaN` or `inf`; nothing panics.
 //! Scenes this test found failing are kept in `tests/scenes/` and run as regressions.
@@ -61,6 +62,42 @@ struct Params {
     elements: u32,
     segments: u32,
     models: [bool; 3],
+    motion: Motion,
+}
+
+/// The 3D fields: initial direction, initial velocity and angular velocity (dynamics only),
+/// point forces (as fractions of the length) and a support motion (one row `[t, dx, dy, dz]`
+/// with t as a fraction of the duration and dx.. as fractions of the length).
+#[derive(Debug, Clone)]
+struct Motion {
+    direction: Option<[f64; 3]>,
+    velocity: Option<[f64; 3]>,
+    angular_velocity: Option<[f64; 3]>,
+    points: Vec<(f64, [f64; 3])>,
+    support: Option<(f64, [f64; 3])>,
+}
+
+fn scaled(lo: f64, hi: f64) -> impl Strategy<Value = [f64; 3]> {
+    (unit_vector(), lo..hi).prop_map(|(u, e)| u.map(|x| x * 10f64.powf(e)))
+}
+
+fn motion() -> impl Strategy<Value = Motion> {
+    (
+        proptest::option::of(unit_vector()),
+        proptest::option::of(scaled(-3.0, 1.0)),
+        proptest::option::of(scaled(-2.0, 2.0)),
+        proptest::collection::vec((0.0f64..=1.0, scaled(-3.0, 2.0)), 0..3),
+        proptest::option::of((0.1f64..=2.0, scaled(-4.0, -1.0))),
+    )
+        .prop_map(
+            |(direction, velocity, angular_velocity, points, support)| Motion {
+                direction,
+                velocity,
+                angular_velocity,
+                points,
+                support,
+            },
+        )
 }
 
 #[derive(Debug, Clone)]
@@ -135,6 +172,7 @@ fn params() -> impl Strategy<Value = Params> {
         analysis(),
         (1u32..=16, 2u32..=24),
         any::<[bool; 3]>(),
+        motion(),
     )
         .prop_map(
             |(
@@ -146,6 +184,7 @@ fn params() -> impl Strategy<Value = Params> {
                 analysis,
                 (elements, segments),
                 models,
+                motion,
             )| Params {
                 length: 10f64.powf(len),
                 core_d: 10f64.powf(d),
@@ -162,6 +201,7 @@ fn params() -> impl Strategy<Value = Params> {
                 elements,
                 segments,
                 models,
+                motion,
             },
         )
 }
@@ -212,14 +252,54 @@ fn scene_json(p: &Params) -> Value {
     let mut layer = wire(layer_d);
     layer["wires"] = json!(p.wires);
     layer["lay_angle_deg"] = json!(p.lay_deg);
+    let m = &p.motion;
+    let dynamic = !matches!(p.analysis, Analysis::Static { .. });
+    let mut initial = json!({});
+    if let Some(d) = m.direction {
+        initial["direction"] = json!(d);
+    }
+    if dynamic {
+        if let Some(v) = m.velocity {
+            initial["velocity"] = json!(v);
+        }
+        if let Some(w) = m.angular_velocity {
+            initial["angular_velocity"] = json!(w);
+        }
+    }
+    let points: Vec<Value> = m
+        .points
+        .iter()
+        .map(|(s, f)| json!({ "s": s * p.length, "force": f }))
+        .collect();
+    // A moving support in a dynamic run, or in statics without the fine model (which refuses
+    // it there by name).
+    let duration = analysis["duration"].as_f64().unwrap_or(1.0);
+    let moving = m.support.filter(|_| dynamic || !fine);
+    let supports: Vec<Value> = p
+        .supports
+        .iter()
+        .enumerate()
+        .map(|(i, (at, kind))| {
+            let mut s = json!({ "at": at, "kind": kind });
+            if let (0, Some((t, d))) = (i, moving) {
+                s["motion"] = json!([[
+                    t * duration,
+                    d[0] * p.length,
+                    d[1] * p.length,
+                    d[2] * p.length
+                ]]);
+            }
+            s
+        })
+        .collect();
     json!({
         "name": "random",
         "strand": { "length": p.length, "core": wire(p.core_d), "layers": [layer],
                     "friction": p.friction },
         "law": p.law,
-        "supports": p.supports.iter().map(|(at, kind)| json!({ "at": at, "kind": kind }))
-            .collect::<Vec<_>>(),
-        "loads": { "gravity": p.gravity },
+        "initial": initial,
+        "supports": supports,
+        "loads": { "gravity": p.gravity, "points": points },
         "analysis": analysis,
         "models": models
     })
