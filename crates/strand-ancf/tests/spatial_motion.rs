@@ -380,8 +380,7 @@ fn small_curvature_ei(b: &Beam) -> f64 {
     if law.kind() == LawKind::Constant {
         law.base_bending_stiffness()
     } else {
-        law.strand()
-            .max_bending_stiffness(law.options().base_stiffness)
+        law.stick_bending_stiffness()
     }
 }
 
