@@ -267,25 +267,35 @@ mod tests {
         m
     }
 
+    /// Position and energy limits of 1e-6 for the tests.
+    fn test_tol() -> GoldenTol {
+        GoldenTol {
+            position: 1e-6,
+            energy: 1e-6,
+            why: "test".into(),
+            quick: None,
+        }
+    }
+
+    /// Provenance of a test snapshot.
+    fn test_provenance() -> Provenance {
+        Provenance {
+            command: "test".into(),
+            commit: "abc".into(),
+            date: "today".into(),
+            profile: "debug".into(),
+            machine: Machine::detect(),
+        }
+    }
+
     /// A stored z counts: a run that moves off the plane by 1e-3 m fails, and a stored planar
     /// snapshot compares with a planar run (missing z is zero).
     #[test]
     fn distances_include_z() {
         let dir = std::env::temp_dir().join(format!("xtask-golden-z-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
-        let tol = GoldenTol {
-            position: 1e-6,
-            energy: 1e-6,
-            why: "test".into(),
-            quick: None,
-        };
-        let prov = Provenance {
-            command: "test".into(),
-            commit: "abc".into(),
-            date: "today".into(),
-            profile: "debug".into(),
-            machine: Machine::detect(),
-        };
+        let tol = test_tol();
+        let prov = test_provenance();
         bless(&dir, "s", &prov, &tol, snap_z(0.0, Some(0.2))).unwrap();
         let rows = compare(&dir, "s", &tol, &snap_z(0.0, Some(0.2)));
         assert!(rows.iter().all(|r| r.status == Status::Pass), "{rows:?}");
@@ -302,22 +312,11 @@ mod tests {
     fn missing_file_says_bless_and_changes_fail() {
         let dir = std::env::temp_dir().join(format!("xtask-golden-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
-        let tol = GoldenTol {
-            position: 1e-6,
-            energy: 1e-6,
-            why: "test".into(),
-            quick: None,
-        };
+        let tol = test_tol();
         let rows = compare(&dir, "s", &tol, &snap(0.0));
         assert_eq!(rows[0].status, Status::Fail);
         assert!(rows[0].note.contains("--bless"), "{}", rows[0].note);
-        let prov = Provenance {
-            command: "test".into(),
-            commit: "abc".into(),
-            date: "today".into(),
-            profile: "debug".into(),
-            machine: Machine::detect(),
-        };
+        let prov = test_provenance();
         bless(&dir, "s", &prov, &tol, snap(0.0)).unwrap();
         let rows = compare(&dir, "s", &tol, &snap(0.0));
         assert!(rows.iter().all(|r| r.status == Status::Pass), "{rows:?}");
