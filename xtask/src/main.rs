@@ -4,6 +4,7 @@ use std::process::Command;
 
 use anyhow::{Context, bail};
 use clap::{Parser, Subcommand};
+use validate::report::{Report, Row};
 
 mod bench_peers;
 mod bonded;
@@ -69,60 +70,39 @@ fn main() -> anyhow::Result<()> {
 
 /// Runs the base-stiffness study, prints the table and exits with status 1 on a failed check.
 fn stiffness_and_exit(args: &stiffness::StiffnessArgs) -> anyhow::Result<()> {
-    let report = stiffness::run(args)?;
-    print!("{}", report.table());
-    if report.failed() {
-        let names: Vec<String> = report
-            .failures()
-            .map(|r| format!("{} {} {}", r.scene, r.check, r.metric))
-            .collect();
-        eprintln!("stiffness study failed: {}", names.join("; "));
-        std::process::exit(1);
-    }
-    Ok(())
+    print_and_exit_on_failure(&stiffness::run(args)?, "stiffness study", Row::name)
 }
 
 /// Runs the hard cases, prints the table and exits with status 1 when a criterion failed.
+/// A hard case's row names no metric, so a failure is named by case and criterion.
 fn hard_and_exit(args: &hard::HardArgs) -> anyhow::Result<()> {
-    let report = hard::run(args)?;
-    print!("{}", report.table());
-    if report.failed() {
-        let names: Vec<String> = report
-            .failures()
-            .map(|r| format!("{} {}", r.scene, r.check))
-            .collect();
-        eprintln!("hard cases failed: {}", names.join("; "));
-        std::process::exit(1);
-    }
-    Ok(())
+    print_and_exit_on_failure(&hard::run(args)?, "hard cases", |r| {
+        format!("{} {}", r.scene, r.check)
+    })
 }
 
 /// Runs the bonded-stiffness study, prints the table and exits with status 1 when a criterion
 /// failed.
 fn bonded_and_exit(args: &bonded::BondedArgs) -> anyhow::Result<()> {
-    let report = bonded::run(args)?;
-    print!("{}", report.table());
-    if report.failed() {
-        let names: Vec<String> = report
-            .failures()
-            .map(|r| format!("{} {} {}", r.scene, r.check, r.metric))
-            .collect();
-        eprintln!("bonded study failed: {}", names.join("; "));
-        std::process::exit(1);
-    }
-    Ok(())
+    print_and_exit_on_failure(&bonded::run(args)?, "bonded study", Row::name)
 }
 
 /// Runs the validation, prints the table and exits with status 1 when a check failed.
 fn validate_and_exit(args: &validate::ValidateArgs) -> anyhow::Result<()> {
-    let report = validate::run(args)?;
+    print_and_exit_on_failure(&validate::run(args)?, "validation", Row::name)
+}
+
+/// Prints `report`'s table; when a row failed, prints `"{task} failed: "` and the failing
+/// rows as `name` gives them to stderr and exits with status 1.
+fn print_and_exit_on_failure(
+    report: &Report,
+    task: &str,
+    name: impl Fn(&Row) -> String,
+) -> anyhow::Result<()> {
     print!("{}", report.table());
     if report.failed() {
-        let names: Vec<String> = report
-            .failures()
-            .map(|r| format!("{} {} {}", r.scene, r.check, r.metric))
-            .collect();
-        eprintln!("validation failed: {}", names.join("; "));
+        let names: Vec<String> = report.failures().map(name).collect();
+        eprintln!("{task} failed: {}", names.join("; "));
         std::process::exit(1);
     }
     Ok(())

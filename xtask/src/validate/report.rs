@@ -137,6 +137,11 @@ impl Row {
         self
     }
 
+    /// The row as a failure names it: scene, check and metric.
+    pub fn name(&self) -> String {
+        format!("{} {} {}", self.scene, self.check, self.metric)
+    }
+
     fn value_text(&self) -> String {
         match self.value {
             Some(0.0) => format!("0{}", unit_suffix(self.unit)),
