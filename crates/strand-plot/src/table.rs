@@ -13,22 +13,7 @@ pub struct Table {
 impl Table {
     /// Reads `path`.
     pub fn load(path: &Path) -> std::io::Result<Table> {
-        let text = std::fs::read_to_string(path)?;
-        let mut lines = text.lines();
-        let header = lines
-            .next()
-            .unwrap_or_default()
-            .split(',')
-            .map(|h| h.trim().to_string())
-            .collect();
-        let rows = lines
-            .filter(|l| !l.trim().is_empty())
-            .map(|l| {
-                l.split(',')
-                    .map(|f| f.trim().parse().unwrap_or(f64::NAN))
-                    .collect()
-            })
-            .collect();
+        let (header, rows) = read_csv(path, |f| f.parse().unwrap_or(f64::NAN))?;
         Ok(Table { header, rows })
     }
 
@@ -54,18 +39,7 @@ pub struct TextTable {
 impl TextTable {
     /// Reads `path`.
     pub fn load(path: &Path) -> std::io::Result<TextTable> {
-        let text = std::fs::read_to_string(path)?;
-        let mut lines = text.lines();
-        let header = lines
-            .next()
-            .unwrap_or_default()
-            .split(',')
-            .map(|h| h.trim().to_string())
-            .collect();
-        let rows = lines
-            .filter(|l| !l.trim().is_empty())
-            .map(|l| l.split(',').map(|f| f.trim().to_string()).collect())
-            .collect();
+        let (header, rows) = read_csv(path, str::to_string)?;
         Ok(TextTable { header, rows })
     }
 
@@ -81,6 +55,27 @@ impl TextTable {
             fields,
         })
     }
+}
+
+/// The header and the non-blank rows of the CSV file `path`, each field trimmed and read by
+/// `field`.
+fn read_csv<T>(
+    path: &Path,
+    field: impl Fn(&str) -> T,
+) -> std::io::Result<(Vec<String>, Vec<Vec<T>>)> {
+    let text = std::fs::read_to_string(path)?;
+    let mut lines = text.lines();
+    let header = lines
+        .next()
+        .unwrap_or_default()
+        .split(',')
+        .map(|h| h.trim().to_string())
+        .collect();
+    let rows = lines
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| l.split(',').map(|f| field(f.trim())).collect())
+        .collect();
+    Ok((header, rows))
 }
 
 /// One row of a [`TextTable`].
