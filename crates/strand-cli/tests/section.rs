@@ -10,15 +10,21 @@ fn strand(args: &[&str]) -> std::process::Output {
         .unwrap()
 }
 
-#[test]
-fn section_json_prints_spec8_values() {
-    let out = strand(&["section", "validation/paper-fig7-g8.json", "--json"]);
+/// `strand` with `args`, which must succeed (else its stderr is shown), its stdout read as
+/// JSON.
+fn strand_json(args: &[&str]) -> serde_json::Value {
+    let out = strand(args);
     assert!(
         out.status.success(),
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+#[test]
+fn section_json_prints_spec8_values() {
+    let v = strand_json(&["section", "validation/paper-fig7-g8.json", "--json"]);
     for (key, printed, digits) in [
         ("R_w", 2.5e-3, 2),
         ("pitch", 0.043157, 5),
@@ -40,7 +46,7 @@ fn section_json_prints_spec8_values() {
 
 #[test]
 fn section_json_with_strain_and_curvature() {
-    let out = strand(&[
+    let v = strand_json(&[
         "section",
         "validation/paper-fig7-g8.json",
         "--strain",
@@ -51,12 +57,6 @@ fn section_json_with_strain_and_curvature() {
         "0.1",
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let wires = v["wires"].as_array().unwrap();
     assert_eq!(wires.len(), 6);
     // Secant stiffness lies between K_min and K_max, and is M / kappa.
@@ -131,13 +131,7 @@ fn fig7_with_section(tag: &str, section: &str) -> std::path::PathBuf {
 #[test]
 fn section_shows_the_base_stiffness_and_both_values() {
     let p = fig7_with_section("default", "");
-    let out = strand(&["section", p.to_str().unwrap(), "--json"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = strand_json(&["section", p.to_str().unwrap(), "--json"]);
     let (e, a) = (2.0e8, 20f64.to_radians());
     let i = |d: f64| std::f64::consts::PI * d.powi(4) / 64.0;
     let costello = e * i(3e-3) + 6.0 * e * i(2e-3) * a.cos() * 2.0 / (2.0 + 0.3 * a.sin().powi(2));
@@ -160,8 +154,7 @@ fn section_shows_the_base_stiffness_and_both_values() {
     assert!(text.contains(&format!("{paper:.6e}")), "{text}");
     // A scene naming the paper's form uses it.
     let p = fig7_with_section("foti", r#"{"base_stiffness": "foti"}"#);
-    let out = strand(&["section", p.to_str().unwrap(), "--json"]);
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = strand_json(&["section", p.to_str().unwrap(), "--json"]);
     assert_eq!(v["base_stiffness"], "foti");
     assert!(v["K_min"].as_f64().unwrap() > costello);
     // Unknown forms and keys are rejected naming the field.
@@ -187,13 +180,7 @@ fn section_shows_the_base_stiffness_and_both_values() {
 #[test]
 fn section_shows_the_stick_stiffness_and_both_values() {
     let p = fig7_with_section("stick-default", "");
-    let out = strand(&["section", p.to_str().unwrap(), "--json"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = strand_json(&["section", p.to_str().unwrap(), "--json"]);
     let (e, a, r_w) = (2.0e8, 20f64.to_radians(), 2.5e-3);
     let area = std::f64::consts::PI * 2e-3f64.powi(2) / 4.0;
     let plane = 3.0 * a.cos().powi(3) * e * area * r_w * r_w;
@@ -231,8 +218,7 @@ fn section_shows_the_stick_stiffness_and_both_values() {
     assert!(text.contains(&format!("{k_plane:.6e}")), "{text}");
     // The plane section, named.
     let p = fig7_with_section("plane", r#"{"stick_stiffness": "plane_section"}"#);
-    let out = strand(&["section", p.to_str().unwrap(), "--json"]);
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = strand_json(&["section", p.to_str().unwrap(), "--json"]);
     assert_eq!(v["stick_stiffness"], "plane_section");
     assert_eq!(v["stick_factor"].as_f64(), Some(1.0));
     assert_eq!(v["K_max"], v["K_max_plane_section"]);
@@ -278,11 +264,10 @@ fn section_reads_the_curvature_of_the_result_files() {
     };
     let (centre, wires) = (read("centerline.csv"), read("wires.csv"));
     let num = |s: &str| s.parse::<f64>().unwrap();
-    let v: serde_json::Value =
-        serde_json::from_slice(&strand(&["section", scene, "--json"]).stdout).unwrap();
+    let v = strand_json(&["section", scene, "--json"]);
     let ea = v["EA"].as_f64().unwrap();
     let section = |s: &str, eps: f64, k: f64| -> serde_json::Value {
-        let o = strand(&[
+        strand_json(&[
             "section",
             scene,
             "--strain",
@@ -292,9 +277,7 @@ fn section_reads_the_curvature_of_the_result_files() {
             "--at",
             s,
             "--json",
-        ]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        serde_json::from_slice(&o.stdout).unwrap()
+        ])
     };
     let mut checked = 0;
     for row in centre.iter().step_by(7) {
