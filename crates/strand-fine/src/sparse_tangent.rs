@@ -305,17 +305,7 @@ mod tests {
             k.view_mut((6 * s, 6 * s), (6, 6)).copy_from(&block(shift));
         }
         for e in elements {
-            for (bi, si) in e.segments.iter().enumerate() {
-                let Some(si) = si else { continue };
-                for (bj, sj) in e.segments.iter().enumerate() {
-                    let Some(sj) = sj else { continue };
-                    for r in 0..6 {
-                        for c in 0..6 {
-                            k[(6 * si + r, 6 * sj + c)] += e.stiffness[(6 * bi + r, 6 * bj + c)];
-                        }
-                    }
-                }
-            }
+            e.add_to_dense(&mut k);
         }
         k
     }

@@ -3,7 +3,7 @@
 //! Generalized coordinates: per segment (global index `s`), six entries starting at `6 s`:
 //! the translation of the centre (m) and a world-frame rotation increment (rad).
 
-use nalgebra::{Matrix3, SMatrix, Vector3};
+use nalgebra::{DMatrix, Matrix3, SMatrix, Vector3};
 use rayon::prelude::*;
 
 use crate::contact::{self, ContactLoad};
@@ -18,6 +18,25 @@ pub struct ElementTangent {
     pub segments: [Option<usize>; 2],
     /// `-d(loads)/d(coordinates)` over (a, b), 12 x 12.
     pub stiffness: SMatrix<f64, 12, 12>,
+}
+
+impl ElementTangent {
+    /// Adds the element's blocks to the dense tangent `k` of the whole model (`6 n` square for
+    /// `n` segments, coordinates as in the module docs); a ground side adds nothing. For
+    /// dense analysis of small models.
+    pub fn add_to_dense(&self, k: &mut DMatrix<f64>) {
+        for (bi, si) in self.segments.iter().enumerate() {
+            let Some(si) = si else { continue };
+            for (bj, sj) in self.segments.iter().enumerate() {
+                let Some(sj) = sj else { continue };
+                for r in 0..6 {
+                    for c in 0..6 {
+                        k[(6 * si + r, 6 * sj + c)] += self.stiffness[(6 * bi + r, 6 * bj + c)];
+                    }
+                }
+            }
+        }
+    }
 }
 
 impl FineModel {

@@ -40,17 +40,7 @@ fn exact_highest_frequency(m: &FineModel, contacts: Contacts) -> f64 {
         Contacts::Stuck => m.contact_stick_tangents(&state),
     });
     for e in elements {
-        for (bi, si) in e.segments.iter().enumerate() {
-            let Some(si) = si else { continue };
-            for (bj, sj) in e.segments.iter().enumerate() {
-                let Some(sj) = sj else { continue };
-                for r in 0..6 {
-                    for c in 0..6 {
-                        k[(6 * si + r, 6 * sj + c)] += e.stiffness[(6 * bi + r, 6 * bj + c)];
-                    }
-                }
-            }
-        }
+        e.add_to_dense(&mut k);
     }
     let mut b = DMatrix::<f64>::zeros(n, n);
     let mut i = 0;

@@ -48,17 +48,7 @@ fn assembled(m: &FineModel, state: &ModelState) -> DMatrix<f64> {
     let n = 6 * m.segment_count();
     let mut k = DMatrix::zeros(n, n);
     for e in m.element_tangents(state) {
-        for (bi, si) in e.segments.iter().enumerate() {
-            let Some(si) = si else { continue };
-            for (bj, sj) in e.segments.iter().enumerate() {
-                let Some(sj) = sj else { continue };
-                for r in 0..6 {
-                    for c in 0..6 {
-                        k[(6 * si + r, 6 * sj + c)] += e.stiffness[(6 * bi + r, 6 * bj + c)];
-                    }
-                }
-            }
-        }
+        e.add_to_dense(&mut k);
     }
     k
 }
