@@ -6,7 +6,7 @@
 use nalgebra::{DMatrix, Matrix3, SMatrix, Vector3};
 use rayon::prelude::*;
 
-use crate::contact::{self, ContactLoad};
+use crate::contact::{self, ContactLoad, ContactPoint};
 use crate::joint::perturb;
 use crate::model::{FineModel, ModelState};
 use crate::segment::{Frame, Placement, Pose};
@@ -37,6 +37,20 @@ impl ElementTangent {
             }
         }
     }
+}
+
+/// A contact taken as closed, at a state: its point on the wire's axis and the core segment
+/// paired with it.
+struct ClosedContact<'a> {
+    contact: &'a ContactPoint,
+    /// Pose of the wire segment that carries the contact.
+    wire: &'a Pose,
+    /// The contact point on the wire segment's axis (m).
+    point: Vector3<f64>,
+    /// Index of the core segment nearest to `point`.
+    core_segment: usize,
+    /// Pose of that core segment.
+    core: &'a Pose,
 }
 
 impl FineModel {
@@ -177,31 +191,12 @@ impl FineModel {
     /// `k_n`, `k_t` between the contact points of the wire and the paired core segment (for
     /// the stable time step).
     pub fn contact_bound_tangents(&self, state: &ModelState) -> Vec<ElementTangent> {
-        let offsets = self.segment_offsets();
-        let core = &self.wires[0].chain;
-        let core_poses = &state.wires[0].poses;
-        let mut out = Vec::with_capacity(self.contact_count());
-        for ((w, s), (hist, &off)) in self
-            .wires
-            .iter()
-            .zip(&state.wires)
-            .zip(state.contacts.iter().zip(&offsets))
-        {
-            for (cp, h) in w.contacts.iter().zip(hist) {
-                let wire = &s.poses[cp.segment];
-                let p = wire.point(&cp.offset);
-                let j =
-                    contact::nearest_core_segment(core_poses, &core.segments, &p, h.core_segment);
-                let cj = &core_poses[j];
-                let k = cp.law.normal_stiffness.max(cp.law.tangential_stiffness);
-                let b = contact_jacobian(&(p - wire.position), &(p - cj.position));
-                out.push(ElementTangent {
-                    segments: [Some(off + cp.segment), Some(j)],
-                    stiffness: b.transpose() * b * k,
-                });
-            }
-        }
-        out
+        self.closed_contact_tangents(state, |c| {
+            let law = &c.contact.law;
+            let k = law.normal_stiffness.max(law.tangential_stiffness);
+            let b = contact_jacobian(&(c.point - c.wire.position), &(c.point - c.core.position));
+            Some(b.transpose() * b * k)
+        })
     }
 
     /// Tangents of every contact as if closed and stuck, at `state`: the normal spring `k_n`
@@ -212,6 +207,32 @@ impl FineModel {
     /// aside), closer than [`FineModel::contact_bound_tangents`], which puts `max(k_n, k_t)`
     /// in every direction at the wire's axis.
     pub fn contact_stick_tangents(&self, state: &ModelState) -> Vec<ElementTangent> {
+        let core = &self.wires[0].chain;
+        self.closed_contact_tangents(state, |c| {
+            let q =
+                contact::closest_on_axis(&c.point, c.core, core.segments[c.core_segment].length);
+            let d = c.point - q;
+            let n = if d.norm() > 0.0 {
+                d.normalize()
+            } else {
+                return None;
+            };
+            let x = q + d * c.contact.core_share;
+            let b = contact_jacobian(&(x - c.wire.position), &(x - c.core.position));
+            let law = &c.contact.law;
+            let spring = n * n.transpose() * (law.normal_stiffness - law.tangential_stiffness)
+                + Matrix3::identity() * law.tangential_stiffness;
+            Some(b.transpose() * spring * b)
+        })
+    }
+
+    /// The blocks `stiffness` gives for every contact closed at `state`, each on its wire
+    /// segment and the core segment nearest to its point (`None`: the contact adds nothing).
+    fn closed_contact_tangents(
+        &self,
+        state: &ModelState,
+        stiffness: impl Fn(&ClosedContact) -> Option<SMatrix<f64, 12, 12>>,
+    ) -> Vec<ElementTangent> {
         let offsets = self.segment_offsets();
         let core = &self.wires[0].chain;
         let core_poses = &state.wires[0].poses;
@@ -227,23 +248,19 @@ impl FineModel {
                 let p = wire.point(&cp.offset);
                 let j =
                     contact::nearest_core_segment(core_poses, &core.segments, &p, h.core_segment);
-                let cj = &core_poses[j];
-                let q = contact::closest_on_axis(&p, cj, core.segments[j].length);
-                let d = p - q;
-                let n = if d.norm() > 0.0 {
-                    d.normalize()
-                } else {
-                    continue;
+                let closed = ClosedContact {
+                    contact: cp,
+                    wire,
+                    point: p,
+                    core_segment: j,
+                    core: &core_poses[j],
                 };
-                let x = q + d * cp.core_share;
-                let b = contact_jacobian(&(x - wire.position), &(x - cj.position));
-                let law = &cp.law;
-                let spring = n * n.transpose() * (law.normal_stiffness - law.tangential_stiffness)
-                    + Matrix3::identity() * law.tangential_stiffness;
-                out.push(ElementTangent {
-                    segments: [Some(off + cp.segment), Some(j)],
-                    stiffness: b.transpose() * spring * b,
-                });
+                if let Some(k) = stiffness(&closed) {
+                    out.push(ElementTangent {
+                        segments: [Some(off + cp.segment), Some(j)],
+                        stiffness: k,
+                    });
+                }
             }
         }
         out
