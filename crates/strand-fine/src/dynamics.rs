@@ -14,16 +14,13 @@ use rayon::prelude::*;
 
 use crate::model::{Energies, FineModel, ModelState, WireLoads};
 
-/// Upper bound on the highest circular frequency (rad/s) of the model linearised at `state`:
-/// Gershgorin row sums of `B K B`, similar to `M^{-1} K`, with `B = M^{-1/2}` block by block:
-/// `m^{-1/2}` for a segment's translations and `R I^{-1/2} R^T` for its rotations (the world
-/// inertia tensor of the axisymmetric segment, axial and transverse inertia apart). Contacts
-/// enter closed, with their stiffer spring (normal or tangential) in every direction, so the
-/// bound holds whichever contacts close. (With the smallest principal inertia in every
-/// direction instead, the bound was 2.1-7.6 times the exact highest frequency on the Table 1
-/// strand at 77-10 segments per wire; block by block it is 1.3-1.6 times.)
-pub fn highest_frequency(model: &FineModel, state: &ModelState) -> f64 {
-    // B per segment: m^{-1/2} I on the translations, R I^{-1/2} R^T on the rotations.
+/// `B = M^{-1/2}` block by block at `state`, one 6 x 6 block per segment: `m^{-1/2} I` on its
+/// translations (kg^-1/2) and `R I^{-1/2} R^T` on its rotations (kg^-1/2 m^-1; the world
+/// inertia tensor of the axisymmetric segment, axial and transverse inertia apart).
+pub(crate) fn inverse_sqrt_mass_blocks(
+    model: &FineModel,
+    state: &ModelState,
+) -> Vec<SMatrix<f64, 6, 6>> {
     let mut blocks: Vec<SMatrix<f64, 6, 6>> = Vec::with_capacity(model.segment_count());
     for (w, s) in model.wires.iter().zip(&state.wires) {
         for (seg, p) in w.chain.segments.iter().zip(&s.poses) {
@@ -41,6 +38,19 @@ pub fn highest_frequency(model: &FineModel, state: &ModelState) -> f64 {
             blocks.push(b);
         }
     }
+    blocks
+}
+
+/// Upper bound on the highest circular frequency (rad/s) of the model linearised at `state`:
+/// Gershgorin row sums of `B K B`, similar to `M^{-1} K`, with `B = M^{-1/2}` block by block:
+/// `m^{-1/2}` for a segment's translations and `R I^{-1/2} R^T` for its rotations (the world
+/// inertia tensor of the axisymmetric segment, axial and transverse inertia apart). Contacts
+/// enter closed, with their stiffer spring (normal or tangential) in every direction, so the
+/// bound holds whichever contacts close. (With the smallest principal inertia in every
+/// direction instead, the bound was 2.1-7.6 times the exact highest frequency on the Table 1
+/// strand at 77-10 segments per wire; block by block it is 1.3-1.6 times.)
+pub fn highest_frequency(model: &FineModel, state: &ModelState) -> f64 {
+    let blocks = inverse_sqrt_mass_blocks(model, state);
     // The assembled 6x6 blocks (summed before taking absolute values: the diagonal blocks
     // of neighbouring joints partly cancel).
     let mut elements = model.joint_tangents(state);

@@ -10,8 +10,9 @@
 //! `R I^{-1/2} R^T` on its rotations), applied through the block-sparse assembly of
 //! [`crate::sparse_tangent`].
 
-use nalgebra::{DMatrix, Matrix3, SMatrix, Vector3};
+use nalgebra::{DMatrix, SMatrix};
 
+use crate::dynamics::inverse_sqrt_mass_blocks;
 use crate::model::{FineModel, ModelState};
 use crate::sparse_tangent::SparseTangent;
 
@@ -39,24 +40,7 @@ pub fn lanczos_highest_frequency(
     elements.extend(model.contact_stick_tangents(state));
     let mut k = SparseTangent::new(model, state);
     k.assemble(&elements, |_| SMatrix::<f64, 6, 6>::zeros());
-    // B = M^{-1/2} block by block.
-    let mut blocks: Vec<SMatrix<f64, 6, 6>> = Vec::with_capacity(model.segment_count());
-    for (w, s) in model.wires.iter().zip(&state.wires) {
-        for (seg, p) in w.chain.segments.iter().zip(&s.poses) {
-            let r = p.rotation.to_rotation_matrix().into_inner();
-            let d = Matrix3::from_diagonal(&Vector3::new(
-                seg.axial_inertia.sqrt().recip(),
-                seg.transverse_inertia.sqrt().recip(),
-                seg.transverse_inertia.sqrt().recip(),
-            ));
-            let mut b = SMatrix::<f64, 6, 6>::zeros();
-            b.fixed_view_mut::<3, 3>(0, 0)
-                .copy_from(&(Matrix3::identity() * seg.mass.sqrt().recip()));
-            b.fixed_view_mut::<3, 3>(3, 3)
-                .copy_from(&(r * d * r.transpose()));
-            blocks.push(b);
-        }
-    }
+    let blocks = inverse_sqrt_mass_blocks(model, state);
     let n = k.dimension();
     let apply_b = |x: &[f64], y: &mut [f64]| {
         for (s, b) in blocks.iter().enumerate() {
