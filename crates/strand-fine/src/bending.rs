@@ -51,6 +51,19 @@ pub struct BendingTest {
 }
 
 impl BendingTest {
+    /// The static solve of each load step: one step, relative residual 1e-8, at most 60
+    /// Newton iterations, forces measured against `force_scale` (N; the tension, where the
+    /// test has one).
+    pub fn load_step_statics(force_scale: f64) -> StaticOptions {
+        StaticOptions {
+            load_steps: 1,
+            tolerance: 1e-8,
+            max_iterations: 60,
+            force_scale: Some(force_scale),
+            ..Default::default()
+        }
+    }
+
     /// The frictionless test of the all-slip stiffness K_min: one curvature `kappa` (1/m) at
     /// the tension `tension` (N), `segments_per_pitch` over `pitches` pitches, default contacts.
     ///
@@ -72,13 +85,7 @@ impl BendingTest {
             curvatures: vec![kappa],
             contact: ContactOptions::default(),
             friction: 0.0,
-            statics: StaticOptions {
-                load_steps: 1,
-                tolerance: 1e-8,
-                max_iterations: 60,
-                force_scale: Some(tension),
-                ..Default::default()
-            },
+            statics: Self::load_step_statics(tension),
             max_halvings: 6,
             core_springs: SpringScale::default(),
             wire_springs: SpringScale::default(),

@@ -5,7 +5,7 @@ use strand_core::{BaseStiffness, BondedOptions, Strand, StrandSpec, bonded_stiff
 /// The paper's K_min and K_max (eta = cos^3(alpha)), against which the friction figures
 /// below were measured.
 const PAPER: BaseStiffness = BaseStiffness::Paper;
-use strand_fine::{BendingPoint, BendingTest, ContactOptions, SpringScale, StaticOptions};
+use strand_fine::{BendingPoint, BendingTest, ContactOptions, SpringScale};
 
 fn table1() -> Strand {
     Strand::new(StrandSpec::paper(0.4, 2.0e8, 7801.0)).unwrap()
@@ -56,13 +56,7 @@ fn run_with(
         curvatures,
         contact,
         friction: mu,
-        statics: StaticOptions {
-            load_steps: 1,
-            tolerance: 1e-8,
-            max_iterations: 60,
-            force_scale: Some(tension.max(1e-3)),
-            ..Default::default()
-        },
+        statics: BendingTest::load_step_statics(tension.max(1e-3)),
         max_halvings: 6,
         core_springs: springs("CORE"),
         wire_springs: springs("WIRE"),
@@ -165,13 +159,7 @@ fn bonded(
             ..contact
         },
         friction: 1e3,
-        statics: StaticOptions {
-            load_steps: 1,
-            tolerance: 1e-8,
-            max_iterations: 60,
-            force_scale: Some(tension),
-            ..Default::default()
-        },
+        statics: BendingTest::load_step_statics(tension),
         max_halvings: 6,
         core_springs: core,
         wire_springs: SpringScale::default(),
@@ -294,13 +282,7 @@ fn wire_forces() {
             ..Default::default()
         },
         friction: env("MU", 1e3),
-        statics: StaticOptions {
-            load_steps: 1,
-            tolerance: 1e-8,
-            max_iterations: 60,
-            force_scale: Some(1.0),
-            ..Default::default()
-        },
+        statics: BendingTest::load_step_statics(1.0),
         max_halvings: 6,
         core_springs: SpringScale::default(),
         wire_springs: SpringScale::default(),

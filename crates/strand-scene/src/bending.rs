@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 use strand_core::{SectionLaw, Strand};
-use strand_fine::{BendingError, BendingPoint, BendingTest, ContactOptions, StaticOptions};
+use strand_fine::{BendingError, BendingPoint, BendingTest, ContactOptions};
 
 use crate::output::Csv;
 use crate::run::record::{RunError, io_err};
@@ -170,13 +170,7 @@ pub fn run_bending(
         curvatures: curvatures.clone(),
         contact,
         friction: strand.friction(),
-        statics: StaticOptions {
-            load_steps: 1,
-            tolerance: 1e-8,
-            max_iterations: 60,
-            force_scale: Some(opts.tension),
-            ..Default::default()
-        },
+        statics: BendingTest::load_step_statics(opts.tension),
         max_halvings: 6,
         core_springs: Default::default(),
         wire_springs: Default::default(),

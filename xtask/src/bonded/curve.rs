@@ -17,7 +17,7 @@ use strand_core::{
     BondedOptions, LawKind, SectionLaw, SectionOptions, StickStiffness, Strand, StrandSpec,
     bonded_stiffness,
 };
-use strand_fine::{BendingTest, ContactOptions, SpringScale, StaticOptions};
+use strand_fine::{BendingTest, ContactOptions, SpringScale};
 
 use super::Limit;
 use crate::validate::report::{Bound, Row};
@@ -103,13 +103,7 @@ fn test(strand: &Strand, tension: f64, spp: usize, curvatures: &[f64]) -> Bendin
             ..Default::default()
         },
         friction: strand.friction(),
-        statics: StaticOptions {
-            load_steps: 1,
-            tolerance: 1e-8,
-            max_iterations: 60,
-            force_scale: Some(tension),
-            ..Default::default()
-        },
+        statics: BendingTest::load_step_statics(tension),
         max_halvings: 8,
         core_springs: SpringScale::default(),
         wire_springs: SpringScale::default(),

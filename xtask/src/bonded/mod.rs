@@ -27,7 +27,7 @@ use strand_core::{
     BondedOptions, BondedStiffness, LayDirection, LayerSpec, Material, Strand, StrandSpec,
     WireSpec, bonded_stiffness,
 };
-use strand_fine::{BendingTest, ContactOptions, SpringScale, StaticOptions};
+use strand_fine::{BendingTest, ContactOptions, SpringScale};
 
 mod curve;
 
@@ -321,13 +321,7 @@ fn bending_test(
             ..v.contact
         },
         friction: 1e3,
-        statics: StaticOptions {
-            load_steps: 1,
-            tolerance: 1e-8,
-            max_iterations: 60,
-            force_scale: Some(tension),
-            ..Default::default()
-        },
+        statics: BendingTest::load_step_statics(tension),
         max_halvings: 6,
         core_springs: v.core,
         wire_springs: v.wire,
