@@ -11,12 +11,11 @@ use strand_fine::{
     ContactOptions, Discretisation, FineModel, SettledOptions, Support, solve_settled,
 };
 
-#[test]
-fn short_strand_settles_between_the_all_slip_and_all_stick_elastica() {
-    let (length, g) = (0.1, 8.0);
-    let strand = Strand::new(StrandSpec::paper(length, 2.0e8, 7801.0)).unwrap();
+/// `strand` as 12 segments a wire with the default contacts, clamped at one end and free at
+/// the other, under gravity `g` (m/s^2) along -y.
+fn clamped_under_gravity(strand: &Strand, g: f64) -> FineModel {
     let mut m = FineModel::from_strand(
-        &strand,
+        strand,
         Discretisation {
             core_segments: 12,
             wire_segments: 12,
@@ -24,8 +23,16 @@ fn short_strand_settles_between_the_all_slip_and_all_stick_elastica() {
         Support::Clamped,
         Support::Free,
     );
-    m.add_contacts(&strand, &ContactOptions::default());
+    m.add_contacts(strand, &ContactOptions::default());
     m.gravity = Vector3::new(0.0, -g, 0.0);
+    m
+}
+
+#[test]
+fn short_strand_settles_between_the_all_slip_and_all_stick_elastica() {
+    let (length, g) = (0.1, 8.0);
+    let strand = Strand::new(StrandSpec::paper(length, 2.0e8, 7801.0)).unwrap();
+    let m = clamped_under_gravity(&strand, g);
     let mut state = m.rest_state();
     let t = std::time::Instant::now();
     let opts = SettledOptions::default();
@@ -95,17 +102,7 @@ fn tiny_loads_settle_between_the_stick_and_slip_stiffness() {
         let strand = Strand::new(spec).unwrap();
         let mut per_load = Vec::new();
         for factor in [1e-12, 1e-6, 1e-3, 1e3] {
-            let mut m = FineModel::from_strand(
-                &strand,
-                Discretisation {
-                    core_segments: 12,
-                    wire_segments: 12,
-                },
-                Support::Clamped,
-                Support::Free,
-            );
-            m.add_contacts(&strand, &ContactOptions::default());
-            m.gravity = Vector3::new(0.0, -g * factor, 0.0);
+            let m = clamped_under_gravity(&strand, g * factor);
             let mut state = m.rest_state();
             let r = solve_settled(
                 &m,
