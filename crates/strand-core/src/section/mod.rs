@@ -95,6 +95,50 @@ struct LayerLaw {
     paper_factor: f64,
 }
 
+impl LayerLaw {
+    /// The critical curvature (1/m) a wire report gives for a wire at angle `theta` (rad,
+    /// `sin_t` its sine) from the reference half of the neutral axis, with friction limit
+    /// `scale gain` on the loaded side of its slider: `scale gain / (k factor R_w sin(theta))`.
+    /// The ratio gain/sin(theta) has the limit mu sin(alpha) on the neutral axis (theta -> 0)
+    /// and grows without bound as theta -> pi (none).
+    fn critical_curvature(
+        &self,
+        scale: f64,
+        factor: f64,
+        gain: f64,
+        theta: f64,
+        sin_t: f64,
+    ) -> Option<f64> {
+        let ratio = if sin_t > 1e-12 {
+            Some(gain / sin_t)
+        } else if theta < 0.5 * std::f64::consts::PI {
+            Some(self.capstan)
+        } else {
+            None
+        };
+        ratio.map(|r| scale * r / (self.k * factor * self.radius))
+    }
+
+    /// The state a wire report gives: the slider's, except for a wire without lever (`arm`,
+    /// m), which carries no force: its state follows `critical` against the curvature
+    /// magnitude `kappa` (1/m).
+    fn reported_state(
+        &self,
+        slider: WireState,
+        arm: f64,
+        critical: Option<f64>,
+        kappa: f64,
+    ) -> WireState {
+        if arm > 1e-12 * self.radius {
+            slider
+        } else if critical.is_some_and(|c| kappa > c) {
+            WireState::Slip
+        } else {
+            WireState::Stick
+        }
+    }
+}
+
 /// A section law built for one strand.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SectionLaw {
@@ -605,15 +649,7 @@ impl SectionLaw {
             .map(|(i, w)| {
                 let lever = w.lever[1] * dir; // strain per unit |kappa|
                 let arm = lever.abs();
-                let f = slider(
-                    self.kind,
-                    law.k,
-                    w.lever[1] * kappa,
-                    scale * w.gains[0],
-                    scale * w.gains[1],
-                    law.paper_factor,
-                    slip.get(i).copied().unwrap_or(0.0),
-                );
+                let f = self.slide(law, i, w.lever[1] * kappa, scale, w.gains, slip, &mut []);
                 // The side of the slider the force loads (the strain's side when it is zero).
                 let stretched = if f.force != 0.0 {
                     f.force > 0.0
@@ -626,28 +662,11 @@ impl SectionLaw {
                 } else {
                     1.0
                 };
-                // kappa_c = cap / (k_factor arm), arm = R_w sin(theta), theta = |phi|; the
-                // ratio gain/sin(theta) has the limit mu sin(alpha) on the neutral axis
-                // (theta -> 0) and grows without bound as theta -> pi.
+                // kappa_c = cap / (k_factor arm), arm = R_w sin(theta), theta = |phi|.
                 let theta = w.phase.abs();
-                let sin_t = theta.sin();
                 let gain = w.gains[if stretched { 0 } else { 1 }];
-                let ratio = if sin_t > 1e-12 {
-                    Some(gain / sin_t)
-                } else if theta < 0.5 * std::f64::consts::PI {
-                    Some(law.capstan)
-                } else {
-                    None
-                };
-                let critical = ratio.map(|r| scale * r / (law.k * factor * law.radius));
-                // A wire without lever carries no force; its state follows kappa_c.
-                let state = if arm > 1e-12 * law.radius {
-                    f.state
-                } else if critical.is_some_and(|c| kappa.abs() > c) {
-                    WireState::Slip
-                } else {
-                    WireState::Stick
-                };
+                let critical = law.critical_curvature(scale, factor, gain, theta, theta.sin());
+                let state = law.reported_state(f.state, arm, critical, kappa.abs());
                 WireReport {
                     wire: i + 1,
                     phase: w.phase,
@@ -706,36 +725,15 @@ impl SectionLaw {
                     (law.capstan * theta).exp_m1(),
                     -(-law.capstan * theta).exp_m1(),
                 ];
-                let f = slider(
-                    self.kind,
-                    law.k,
-                    lambda * knorm,
-                    scale * gains[0],
-                    scale * gains[1],
-                    law.paper_factor,
-                    slip.get(i).copied().unwrap_or(0.0),
-                );
+                let f = self.slide(law, i, lambda * knorm, scale, gains, slip, &mut []);
                 let stretched = if f.force != 0.0 {
                     f.force > 0.0
                 } else {
                     lambda >= 0.0
                 };
                 let gain = gains[if stretched { 0 } else { 1 }];
-                let ratio = if sin_t > 1e-12 {
-                    Some(gain / sin_t)
-                } else if theta < 0.5 * std::f64::consts::PI {
-                    Some(law.capstan)
-                } else {
-                    None
-                };
-                let critical = ratio.map(|r| scale * r / (law.k * factor * law.radius));
-                let state = if arm > 1e-12 * law.radius {
-                    f.state
-                } else if critical.is_some_and(|c| knorm > c) {
-                    WireState::Slip
-                } else {
-                    WireState::Stick
-                };
+                let critical = law.critical_curvature(scale, factor, gain, theta, sin_t);
+                let state = law.reported_state(f.state, arm, critical, knorm);
                 WireReport {
                     wire: i + 1,
                     phase: crate::geometry::wrap_angle(w.phase - beta),
