@@ -115,6 +115,33 @@ pub fn write_vtk_polyline(
     w.flush()
 }
 
+/// The columns of `centerline.csv` (SPEC 6), in order; a model may add its own after them.
+pub const CENTERLINE_COLUMNS: [&str; 7] = [
+    "s",
+    "x",
+    "y",
+    "z",
+    "curvature",
+    "tension",
+    "bending_stiffness",
+];
+
+/// Writes the one frame of a static run, `vtk/centerline_00000.vtk` in `dir`: a polyline
+/// through `points` (m) with per-point scalars (see [`write_vtk_polyline`]). An error names
+/// the file.
+pub fn write_static_vtk(
+    dir: &Path,
+    title: &str,
+    points: &[[f64; 3]],
+    scalars: &[(&str, Vec<f64>)],
+) -> Result<(), String> {
+    let d = dir.join("vtk");
+    std::fs::create_dir_all(&d).map_err(|e| format!("writing {}: {e}", d.display()))?;
+    let path = d.join("centerline_00000.vtk");
+    write_vtk_polyline(&path, title, points, scalars)
+        .map_err(|e| format!("writing {}: {e}", path.display()))
+}
+
 /// The per-frame files of a dynamic run in a model folder: `tip.csv`, `energy.csv` (the SPEC 6
 /// columns, then any extra ones) and, if asked, `vtk/centerline_NNNNN.vtk`.
 pub struct FrameFiles {

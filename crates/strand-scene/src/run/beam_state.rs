@@ -13,7 +13,7 @@ use std::path::Path;
 use strand_ancf::beam::{Beam, ElementKind, PointState};
 use strand_core::{SectionLaw, Station, WireState};
 
-use crate::output::{Csv, number, write_vtk_polyline};
+use crate::output::{CENTERLINE_COLUMNS, Csv, number, write_static_vtk};
 
 /// One row of `centerline.csv`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -112,19 +112,7 @@ pub(crate) fn write(beam: &Beam, rows: &[Row], slip: &[f64], dir: &Path) -> Resu
     let law = beam.law();
     let p = dir.join("centerline.csv");
     let e = |e: std::io::Error| format!("writing {}: {e}", p.display());
-    let mut c = Csv::create(
-        &p,
-        &[
-            "s",
-            "x",
-            "y",
-            "z",
-            "curvature",
-            "tension",
-            "bending_stiffness",
-        ],
-    )
-    .map_err(e)?;
+    let mut c = Csv::create(&p, &CENTERLINE_COLUMNS).map_err(e)?;
     let pw = dir.join("wires.csv");
     let ew = |e: std::io::Error| format!("writing {}: {e}", pw.display());
     let mut wires =
@@ -173,13 +161,10 @@ pub(crate) fn write(beam: &Beam, rows: &[Row], slip: &[f64], dir: &Path) -> Resu
 /// Writes the static state as `vtk/centerline_00000.vtk`, the one frame of a static run, with
 /// the rows' curvature, tension and bending stiffness as point data.
 pub(crate) fn write_vtk(rows: &[Row], dir: &Path, title: &str) -> Result<(), String> {
-    let d = dir.join("vtk");
-    std::fs::create_dir_all(&d).map_err(|e| format!("writing {}: {e}", d.display()))?;
-    let path = d.join("centerline_00000.vtk");
     let points: Vec<[f64; 3]> = rows.iter().map(|r| r.position).collect();
     let column = |f: fn(&Row) -> f64| rows.iter().map(f).collect::<Vec<f64>>();
-    write_vtk_polyline(
-        &path,
+    write_static_vtk(
+        dir,
         title,
         &points,
         &[
@@ -188,5 +173,4 @@ pub(crate) fn write_vtk(rows: &[Row], dir: &Path, title: &str) -> Result<(), Str
             ("bending_stiffness", column(|r| r.stiffness)),
         ],
     )
-    .map_err(|e| format!("writing {}: {e}", path.display()))
 }

@@ -33,7 +33,7 @@ use super::budget;
 use super::record::{
     BALANCE_WARNING, Failure, RunError, RunOptions, RunSummary, Stop, finish, io_err,
 };
-use crate::output::{Csv, FrameFiles, number, write_vtk_polyline};
+use crate::output::{CENTERLINE_COLUMNS, Csv, FrameFiles, number, write_static_vtk};
 use crate::scene::{Analysis, End, IntegratorKind, Scene, SupportKind};
 use strand_ancf::beam::SupportMotion;
 
@@ -594,20 +594,7 @@ fn write_state(
     model.compute_loads(state, 1.0, &mut loads);
     let p = dir.join("centerline.csv");
     let e = |e: std::io::Error| format!("writing {}: {e}", p.display());
-    let mut c = Csv::create(
-        &p,
-        &[
-            "s",
-            "x",
-            "y",
-            "z",
-            "curvature",
-            "tension",
-            "bending_stiffness",
-            "moment",
-        ],
-    )
-    .map_err(e)?;
+    let mut c = Csv::create(&p, &[&CENTERLINE_COLUMNS[..], &["moment"]].concat()).map_err(e)?;
     let rows = measure_along(model, state, &loads, plane);
     let stiffness = secant_along(&rows);
     for (row, k) in rows.iter().zip(&stiffness) {
@@ -627,13 +614,10 @@ fn write_state(
     }
     c.finish().map_err(e)?;
     if vtk {
-        let d = dir.join("vtk");
-        std::fs::create_dir_all(&d).map_err(|e| format!("writing {}: {e}", d.display()))?;
-        let path = d.join("centerline_00000.vtk");
         let points: Vec<[f64; 3]> = rows.iter().map(|r| (rot * r.position).into()).collect();
         let column = |f: fn(&Station) -> f64| rows.iter().map(f).collect::<Vec<f64>>();
-        write_vtk_polyline(
-            &path,
+        write_static_vtk(
+            dir,
             "fine model, static",
             &points,
             &[
@@ -641,8 +625,7 @@ fn write_state(
                 ("tension", column(|r| r.tension)),
                 ("moment", column(|r| r.moment)),
             ],
-        )
-        .map_err(|e| format!("writing {}: {e}", path.display()))?;
+        )?;
     }
     let pc = dir.join("contacts.csv");
     let ec = |e: std::io::Error| format!("writing {}: {e}", pc.display());
