@@ -3,8 +3,7 @@
 //! negative dissipation, and a run where it puts energy in warns; a dynamic scene that names
 //! no law runs `hysteretic`.
 
-use std::collections::HashMap;
-use std::path::Path;
+mod common;
 
 use strand_core::LawKind;
 use strand_scene::{RunOptions, Scene, run_scene};
@@ -26,21 +25,6 @@ fn fig14(law: Option<&str>) -> serde_json::Value {
     v
 }
 
-/// Columns of a CSV file by header name.
-fn csv(path: &Path) -> HashMap<String, Vec<f64>> {
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut lines = text.lines();
-    let header: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
-    let mut cols: HashMap<String, Vec<f64>> =
-        header.iter().map(|h| (h.clone(), Vec::new())).collect();
-    for l in lines {
-        for (h, v) in header.iter().zip(l.split(',')) {
-            cols.get_mut(h).unwrap().push(v.parse().unwrap());
-        }
-    }
-    cols
-}
-
 /// The section-3 pendulum (Fig. 14, Stoermer-Verlet at its stable step, 1 s): with
 /// `continuous` the law's non-potential part puts energy in (1.4e-4 J at the end, 3e-4 J at
 /// 0.4 s; 22 J, booked as negative dissipation, before the law read the recovered tension);
@@ -58,7 +42,12 @@ fn non_potential_work_is_booked_apart_from_dissipation() {
             vtk: false,
         };
         let summary = run_scene(&scene, &opts, &mut |_, _| {}).unwrap().remove(0);
-        let e = csv(&out.join("equivalent/energy.csv"));
+        let e = common::csv_columns(&out.join("equivalent/energy.csv"));
+        // Every field is a number: energy.csv has no blank (non-finite) value.
+        assert!(
+            e.values().flatten().all(|v| v.is_finite()),
+            "{law}: a blank field in energy.csv"
+        );
         let (d, w) = (&e["dissipated"], &e["non_potential"]);
         let k_max = e["kinetic"].iter().cloned().fold(0.0, f64::max);
         // Slip work can only grow (round-off of its sum aside).

@@ -4,7 +4,8 @@
 //! of every coordinate plane. (A moving support in statics is refused by name:
 //! `bad_input.rs`.)
 
-use std::collections::HashMap;
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use nalgebra::{Rotation3, Unit, Vector3};
@@ -30,23 +31,9 @@ fn run(scene: Value, tag: &str) -> PathBuf {
     out.join("fine")
 }
 
-fn csv(path: &Path) -> HashMap<String, Vec<f64>> {
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut lines = text.lines();
-    let header: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
-    let mut cols: HashMap<String, Vec<f64>> =
-        header.iter().map(|h| (h.clone(), Vec::new())).collect();
-    for l in lines {
-        for (h, v) in header.iter().zip(l.split(',')) {
-            cols.get_mut(h).unwrap().push(v.parse().unwrap_or(f64::NAN));
-        }
-    }
-    cols
-}
-
 /// Tip positions over time.
 fn tips(dir: &Path) -> Vec<(f64, Vector3<f64>)> {
-    let c = csv(&dir.join("tip.csv"));
+    let c = common::csv_columns(&dir.join("tip.csv"));
     (0..c["t"].len())
         .map(|i| (c["t"][i], Vector3::new(c["x"][i], c["y"][i], c["z"][i])))
         .collect()
@@ -178,7 +165,9 @@ fn point_force_bends_the_clamped_strand_where_it_acts() {
             "analysis": { "kind": "static", "load_steps": 1 },
             "models": { "fine": { "segments_per_wire": segments } }
         });
-        let c = csv(&run(s, &format!("point-static-{segments}")).join("centerline.csv"));
+        let c = common::csv_columns(
+            &run(s, &format!("point-static-{segments}")).join("centerline.csv"),
+        );
         let tip = Vector3::new(
             *c["x"].last().unwrap(),
             *c["y"].last().unwrap(),

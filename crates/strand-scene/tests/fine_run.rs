@@ -2,7 +2,9 @@
 //! against beam theory, and a short dynamic run of the paper's strand with contacts (files,
 //! energy balance, the scene's axes).
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use std::path::PathBuf;
 
 use serde_json::json;
 use strand_scene::{RunOptions, Scene, run_scene};
@@ -24,21 +26,6 @@ fn run(scene: serde_json::Value, tag: &str) -> PathBuf {
     out.join("fine")
 }
 
-/// Columns of a CSV file by header name.
-fn csv(path: &Path) -> std::collections::HashMap<String, Vec<f64>> {
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut lines = text.lines();
-    let header: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
-    let mut cols: std::collections::HashMap<String, Vec<f64>> =
-        header.iter().map(|h| (h.clone(), Vec::new())).collect();
-    for l in lines {
-        for (h, v) in header.iter().zip(l.split(',')) {
-            cols.get_mut(h).unwrap().push(v.parse().unwrap_or(f64::NAN));
-        }
-    }
-    cols
-}
-
 /// A steel core wire without a layer, clamped, under gravity: small deflection.
 #[test]
 fn measured_moment_curvature_and_stiffness_follow_beam_theory() {
@@ -57,7 +44,7 @@ fn measured_moment_curvature_and_stiffness_follow_beam_theory() {
         "models": { "fine": { "segments_per_wire": 40 } }
     });
     let dir = run(scene, "core");
-    let c = csv(&dir.join("centerline.csv"));
+    let c = common::csv_columns(&dir.join("centerline.csv"));
     let pi = std::f64::consts::PI;
     let q = rho * pi * d * d / 4.0 * g;
     let ei = e * pi * d.powi(4) / 64.0;
@@ -131,7 +118,7 @@ fn dynamic_run_writes_the_files_and_balances_energy() {
         rel < 1e-3,
         "energy balance error {rel:e} of the kinetic energy"
     );
-    let tip = csv(&dir.join("tip.csv"));
+    let tip = common::csv_columns(&dir.join("tip.csv"));
     assert_eq!(tip["t"].len(), 7, "frames at 0, 5, ..., 30 ms");
     // Free fall at first: the tip drops by about g t^2 / 2 (slightly less: it is pinned).
     let drop = -tip["y"].last().unwrap();
@@ -140,7 +127,7 @@ fn dynamic_run_writes_the_files_and_balances_energy() {
         drop > 0.5 * free && drop < 1.6 * free,
         "tip drop {drop:e} vs {free:e}"
     );
-    let e = csv(&dir.join("energy.csv"));
+    let e = common::csv_columns(&dir.join("energy.csv"));
     for k in ["kinetic", "gravity", "elastic", "dissipated", "total"] {
         assert!(e[k].iter().all(|v| v.is_finite()), "{k}");
     }
@@ -158,7 +145,7 @@ fn dynamic_run_writes_the_files_and_balances_energy() {
     let mut along_z = pendulum([0.0, 0.0, 1.0], 0.03);
     along_z["initial"]["phase_reference"] = json!([-1.0, 0.0, 0.0]);
     let dz = run(along_z, "dyn-z");
-    let tz = csv(&dz.join("tip.csv"));
+    let tz = common::csv_columns(&dz.join("tip.csv"));
     for i in 0..tip["t"].len() {
         let (x, y, z) = (tip["x"][i], tip["y"][i], tip["z"][i]);
         // R_y(-90 deg): (x, y, z) -> (-z, y, x).
