@@ -45,28 +45,7 @@ pub fn plot_run(
     let name = &scene.name;
     let mut charts: Vec<(String, Chart)> = Vec::new();
 
-    // Shape: the two axes along which the strand spreads most.
-    let axes = spread_axes(lines.iter().map(|(_, t)| t));
-    let axis_name = ["x", "y", "z"];
-    let shape = Chart {
-        title: format!("{name}: shape at the end"),
-        x_label: format!("{} (m)", axis_name[axes.0]),
-        y_label: format!("{} (m)", axis_name[axes.1]),
-        series: lines
-            .iter()
-            .map(|(s, t)| {
-                Series::xy(
-                    label(s),
-                    &t.column(axis_name[axes.0]),
-                    &t.column(axis_name[axes.1]),
-                    Mark::Line,
-                    model_color(&s.model),
-                )
-            })
-            .collect(),
-        equal_aspect: true,
-        ..Chart::default()
-    };
+    let shape = spread_view(format!("{name}: shape at the end"), &lines);
     charts.push(("shape".into(), shape));
 
     let along = |column: &str, keep: &dyn Fn(&RunSummary, &Table, usize) -> bool| {
@@ -185,28 +164,9 @@ pub fn plot_run(
             .iter()
             .filter_map(|s| read(s, "tip.csv").map(|t| (s, t)))
             .collect();
-        let tip_axes = spread_axes(tips.iter().map(|(_, t)| t));
         charts.push((
             "tip".into(),
-            Chart {
-                title: format!("{name}: path of the tip"),
-                x_label: format!("{} (m)", axis_name[tip_axes.0]),
-                y_label: format!("{} (m)", axis_name[tip_axes.1]),
-                series: tips
-                    .iter()
-                    .map(|(s, t)| {
-                        Series::xy(
-                            label(s),
-                            &t.column(axis_name[tip_axes.0]),
-                            &t.column(axis_name[tip_axes.1]),
-                            Mark::Line,
-                            model_color(&s.model),
-                        )
-                    })
-                    .collect(),
-                equal_aspect: true,
-                ..Chart::default()
-            },
+            spread_view(format!("{name}: path of the tip"), &tips),
         ));
         for s in summaries {
             let Some(e) = read(s, "energy.csv") else {
@@ -253,6 +213,32 @@ fn short(v: f64) -> String {
         format!("{v:.digits$}")
     } else {
         format!("{v:.3e}")
+    }
+}
+
+/// Each run's points (columns x, y, z, m) drawn in the plane of the two axes along which they
+/// spread most, at equal scale.
+fn spread_view(title: String, runs: &[(&RunSummary, Table)]) -> Chart {
+    let axes = spread_axes(runs.iter().map(|(_, t)| t));
+    let axis_name = ["x", "y", "z"];
+    Chart {
+        title,
+        x_label: format!("{} (m)", axis_name[axes.0]),
+        y_label: format!("{} (m)", axis_name[axes.1]),
+        series: runs
+            .iter()
+            .map(|(s, t)| {
+                Series::xy(
+                    label(s),
+                    &t.column(axis_name[axes.0]),
+                    &t.column(axis_name[axes.1]),
+                    Mark::Line,
+                    model_color(&s.model),
+                )
+            })
+            .collect(),
+        equal_aspect: true,
+        ..Chart::default()
     }
 }
 
