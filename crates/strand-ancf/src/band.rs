@@ -90,12 +90,20 @@ impl BandMatrix {
             // Entry (i0 + a, i0 + b) sits at (i0 + a) w + kl + b - a.
             let start = (i0 + a) * w + self.kl - a;
             let row = &mut self.data[start..start + m];
-            for (b, x) in row.iter_mut().enumerate() {
-                *x += if mirror && b > a {
-                    block[b + a * m]
-                } else {
-                    block[a + b * m]
-                };
+            // Columns b <= a from row a of the block; the others from row a or, mirrored, from
+            // column a.
+            let (lower, upper) = row.split_at_mut(a + 1);
+            for (b, x) in lower.iter_mut().enumerate() {
+                *x += block[a + b * m];
+            }
+            if mirror {
+                for (x, y) in upper.iter_mut().zip(&block[a * m + a + 1..(a + 1) * m]) {
+                    *x += y;
+                }
+            } else {
+                for (b, x) in upper.iter_mut().enumerate() {
+                    *x += block[a + (a + 1 + b) * m];
+                }
             }
         }
     }

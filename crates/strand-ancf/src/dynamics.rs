@@ -24,7 +24,7 @@
 //! planar motion).
 
 use crate::band::{BandMatrix, BandSolver};
-use crate::beam::{Beam, BeamError, PointState};
+use crate::beam::{Beam, BeamError, Evaluation, PointState, Tangent};
 use crate::corotation::Corotation;
 use crate::initial::InitialState;
 use crate::moving_support::Drive;
@@ -71,9 +71,14 @@ pub struct DynamicOptions {
     pub increment: f64,
     /// Generalized-alpha: Newton iterations per step before the step is cut.
     pub max_iterations: usize,
-    /// Generalized-alpha: once Newton has been relaxed against a stick/slip cycle, a
-    /// correction below this times the strand length is accepted.
-    pub stagnation: f64,
+    /// Generalized-alpha: line search. Where the step's incremental potential rises again at
+    /// a full Newton correction (its slope along the correction changes sign: a stick/slip
+    /// kink was overshot), the iterate steps back to the secant root of that slope if it lies
+    /// below this fraction of the correction (1: always; 0: never).
+    pub backtrack: f64,
+    /// Generalized-alpha, `hysteretic` law: the share of their stick stiffness the iteration
+    /// matrix gives to slipping wires (see [`Tangent::Iteration`]).
+    pub unloading: f64,
     /// Generalized-alpha: the iteration matrix is rebuilt within a step when a Newton
     /// correction shrinks by less than this factor (0: full Newton; 1: rebuilt only when
     /// Newton stalls).
@@ -99,7 +104,8 @@ impl DynamicOptions {
             output_interval,
             increment: 1e-8,
             max_iterations: 25,
-            stagnation: 1e-9,
+            backtrack: 0.8,
+            unloading: 0.1,
             refresh: 0.5,
             rebuild_rate: 0.02,
         }
@@ -557,7 +563,63 @@ struct AlphaWork {
     /// The predicted q'' of the step: the algorithmic acceleration takes up the Newton
     /// corrections from there when the step is accepted.
     acc_pred: Vec<f64>,
+    /// Length scale of each free coordinate for [`displacement`].
+    scale: Vec<f64>,
+    /// Mass of the strand (kg).
+    mass: f64,
+    /// Largest displacement from the reference configuration so far (m).
+    motion: f64,
 }
+
+impl AlphaWork {
+    /// Evaluates the forces (and, if asked, the tangent into `k`) at `st` and the Newton
+    /// residual into `r`; `None` if the evaluation fails.
+    fn evaluate(
+        &mut self,
+        beam: &Beam,
+        st: &AlphaState,
+        pts_new: &mut [PointState],
+        tangent: Option<Tangent>,
+    ) -> Option<Evaluation> {
+        let k = tangent.map(|t| (&mut self.k, t));
+        let ev = beam
+            .internal_with(
+                &st.q,
+                &st.slip,
+                &mut self.trial,
+                &mut self.force,
+                k,
+                Some(pts_new),
+            )
+            .ok()?;
+        beam.vector_mass().mul_vec(&st.acc, &mut self.mv);
+        residual(beam, &self.mv, &self.force, &self.g_free, &mut self.r);
+        Some(ev)
+    }
+
+    /// Newton tolerance of a step predicted at `st` (m): `increment` times the scale of the
+    /// motion, the strand length or, if smaller, the largest of the displacement from the
+    /// reference so far and of the distances the current velocity and acceleration carry the
+    /// strand over the run's duration (a strand under a tiny load moves by tiny amounts, and an
+    /// absolute tolerance would accept its predictor); but not below the round-off of the
+    /// coordinates.
+    fn tolerance(&mut self, beam: &Beam, opts: &DynamicOptions, st: &AlphaState) -> f64 {
+        for (g, (x, x0)) in st.q.iter().zip(beam.reference()).enumerate() {
+            if let Some(i) = beam.free_index(g) {
+                self.motion = self.motion.max((x - x0).abs() * self.scale[i]);
+            }
+        }
+        let t = opts.duration;
+        let coming = displacement(&st.vf, &self.scale) * t
+            + 0.5 * displacement(&st.alg, &self.scale) * t * t;
+        let l = beam.length();
+        (opts.increment * self.motion.max(coming).min(l)).max(ROUND_OFF * l)
+    }
+}
+
+/// Relative round-off of coordinates: Newton corrections below this times the strand length
+/// are not resolved.
+const ROUND_OFF: f64 = 64.0 * f64::EPSILON;
 
 /// Generalized-alpha parameters for spectral radius `rho`: (alpha_m, alpha_f, gamma, beta).
 fn alpha_parameters(rho: f64) -> (f64, f64, f64, f64) {
@@ -595,19 +657,18 @@ fn alpha_step(
     let beta_p = (1.0 - am) / (h * h * beta * (1.0 - af));
     let gamma_p = gamma / (h * beta);
     let nf = beam.dofs();
-    let tol = opts.increment * beam.length();
     let level = w.saved.len() - depth - 1;
     w.saved[level].copy_from(st);
     // A linear section law gives smooth forces: the predictor extrapolates and the kept
-    // matrix turns with the strand (below). The stick/slip laws keep the plain scheme.
-    let smooth = beam.law().is_linear();
+    // matrix turns with the strand (below).
+    let linear = beam.law().is_linear();
     // Predictor: constant acceleration, q''_{n+1} = q''_n, for a linear section law; zero
     // acceleration for the stick/slip laws, where extrapolating carries wires past their slip
     // limits. On the section-3 pendulum at 1e-3 s steps the constant acceleration leaves
     // the constant law's first correction about ten times smaller, so the co-rotated matrix
     // of the first step serves the whole run (2012 iterations and 2 matrices against 2287
     // and 51 with zero acceleration), but costs the stick/slip laws 3-7 % more iterations.
-    let extrapolate = if smooth { 1.0 } else { 0.0 };
+    let extrapolate = if linear { 1.0 } else { 0.0 };
     for i in 0..nf {
         let pa = extrapolate * st.acc[i];
         w.acc_pred[i] = pa;
@@ -619,40 +680,42 @@ fn alpha_step(
     }
     add_free(beam, &mut st.q, 1.0, &w.dq);
     beam.move_supports(&mut st.q, t0 + h);
+    let tol = w.tolerance(beam, opts, st);
+    // The energy of a rigid translation of the whole strand by `tol` in the metric of the
+    // inertia term (J): the same tolerance for the Newton decrement.
+    let energy_tol = beta_p * w.mass * tol * tol;
     // Modified Newton: the factorized iteration matrix S = beta' M + K is kept across
     // iterations and steps and rebuilt when the step size changes or a correction shrinks by
     // less than `opts.refresh`; every force evaluation is exact, so the converged state is the
-    // same as with full Newton. With a linear law the kept matrix is also turned node by node
-    // with the strand since it was built (`dq = R S^-1 R^T r`), and rebuilt at a step's start
-    // when the last step's final contraction was slower than `opts.rebuild_rate`. Not with
-    // the stick/slip laws: on the section-3 pendulum they gained nothing from either (their
-    // iterations go to the changing set of slipping wires), and where the strand chatters
-    // (`long-run-100s` of `cargo xtask hard`, a hanging strand with its tip compressed) the
-    // slopes wiggle from node to node, the turned matrix took 30 % more iterations, and one
-    // step cycled between two slip sets down to steps of 5e-7 s.
+    // same as with full Newton. With a linear law the kept matrix is the exact tangent, also
+    // turned node by node with the strand since it was built (`dq = R S^-1 R^T r`, module
+    // `corotation`), and rebuilt at a step's start when the last step's final contraction was
+    // slower than `opts.rebuild_rate`. With the stick/slip laws the matrix is the symmetric
+    // one of [`Tangent::Iteration`] (LDL^T; no slower to converge than the exact tangent on
+    // the section-3 pendulum), not turned: their iterations go to the changing set of slipping
+    // wires, and where the strand chatters (`long-run-100s` of `cargo xtask hard`, a hanging
+    // strand with its tip compressed) the slopes wiggle from node to node and the turned
+    // matrix took 30 % more iterations.
+    let tangent = if linear {
+        Tangent::Exact
+    } else {
+        let unloading = if beam.law().kind().has_state() {
+            opts.unloading
+        } else {
+            0.0
+        };
+        Tangent::Iteration { unloading }
+    };
+    let estimate = !beam.law().kind().has_state();
     let mut iterations = 0;
     let mut outcome = None;
     let mut fresh = w.factor_h != h || w.stale;
     w.stale = false;
     let mut prev = f64::INFINITY;
-    let mut relax: f64 = 1.0;
-    let mut prev_slipping = usize::MAX;
-    let estimate = !beam.law().kind().has_state();
-    while iterations < opts.max_iterations {
-        iterations += 1;
-        let k = fresh.then_some(&mut w.k);
-        let Ok(ev) = beam.internal(
-            &st.q,
-            &st.slip,
-            &mut w.trial,
-            &mut w.force,
-            k,
-            Some(pts_new),
-        ) else {
-            break;
-        };
-        beam.vector_mass().mul_vec(&st.acc, &mut w.mv);
-        residual(beam, &w.mv, &w.force, &w.g_free, &mut w.r);
+    let mut full_step = true;
+    let mut ev = w.evaluate(beam, st, pts_new, fresh.then_some(tangent));
+    iterations += 1;
+    while let Some(e) = ev {
         if fresh {
             w.k.add_scaled(beta_p, beam.mass());
             w.factorizations += 1;
@@ -662,67 +725,74 @@ fn alpha_step(
             }
             w.factor_h = h;
             w.rot.reset(&st.q);
-        } else if smooth {
+        } else if linear {
             w.rot.update(&st.q);
         }
         w.dq.copy_from_slice(&w.r);
         w.rot.apply(&mut w.dq, true);
         w.solver.solve(&mut w.dq);
         w.rot.apply(&mut w.dq, false);
-        let dn = beam.correction_size(&w.dq);
+        let dn = displacement(&w.dq, &w.scale);
         if !dn.is_finite() || dn > beam.length() {
             // Diverged: the step is retried in halves, with a fresh matrix.
             w.factor_h = 0.0;
             break;
         }
-        // With the stick/slip laws Newton can cycle between two sets of slipping wires: the
-        // correction stops shrinking although the matrix is the exact tangent. Relaxed
-        // corrections (halved at each such stall) make the cycle contract onto the solution
-        // between the two sets. A stall with a stale matrix only asks for a fresh one.
-        if iterations > 1 && fresh && dn >= 0.9 * prev {
-            relax = (0.5 * relax).max(1.0 / 16.0);
-        } else if relax < 1.0
-            && dn < 0.9 * prev
-            && (ev.slipping == prev_slipping || (estimate && dn <= 1.1 * (1.0 - relax) * prev))
-        {
-            // The slipping set has settled (its size is unchanged, or, for a law without
-            // slip state, the correction shrank by the 1 - relax that a relaxed step on a
-            // fixed set gives) and the correction shrinks: back to full Newton steps.
-            relax = 1.0;
-        }
-        prev_slipping = ev.slipping;
-        add_free(beam, &mut st.q, -relax, &w.dq);
-        for i in 0..nf {
-            st.vf[i] -= relax * gamma_p * w.dq[i];
-            st.acc[i] -= relax * beta_p * w.dq[i];
-        }
+        // The Newton decrement r . dq (J): the drop of the step's incremental potential the
+        // correction promises (for a linear problem, twice its distance to the minimum), and
+        // the slope of that potential along -dq.
+        let decrement = dot(&w.r, &w.dq);
+        step_by(beam, st, &w.dq, 1.0, gamma_p, beta_p);
         // Converged when this correction, or the error left after it, is below `tol`: with
         // full steps contracting at the rate theta = dn / prev, the corrections still to
         // come add up to about dn theta / (1 - theta) (the estimate of Hairer and Wanner,
         // IV.8), which accepts a fast-converging iterate one iteration earlier. Not for a
         // law with slip state: the committed trial state belongs to the forces before this
         // correction, so the correction itself must be below `tol` (and its Newton path,
-        // which decides where the slip is committed, is left as it was).
+        // which decides where the slip is committed, is left as it was). Or when the
+        // decrement is below `energy_tol`: the correction measured in the energy norm of the
+        // iteration matrix, which weighs a correction by the energy it carries (the
+        // displacement is a largest value: a correction of one wire's slip state near the
+        // free end, carrying almost no energy, would hold it up).
         // The ledger uses the forces before this last correction: it moved q by at most
         // about `tol`, which changes the energies by O(tol |Q|), far below the integrator's
         // error.
         let theta = dn / prev;
-        let left = if estimate && relax == 1.0 && prev.is_finite() && theta < 1.0 {
+        let left = if estimate && full_step && prev.is_finite() && theta < 1.0 {
             dn * theta / (1.0 - theta)
         } else {
             f64::INFINITY
         };
-        if dn <= tol || left <= tol || (relax < 1.0 && dn <= opts.stagnation * beam.length()) {
-            if smooth && !fresh && theta.is_finite() && theta > opts.rebuild_rate {
+        if dn <= tol || left <= tol || decrement <= energy_tol {
+            if linear && !fresh && theta.is_finite() && theta > opts.rebuild_rate {
                 w.stale = true;
             }
-            outcome = Some(ev);
+            outcome = Some(e);
+            break;
+        }
+        if iterations >= opts.max_iterations {
             break;
         }
         // Rebuild the iteration matrix when the last correction shrank by less than
         // `opts.refresh`: a stale tangent converges linearly at about that rate.
         fresh = dn > opts.refresh * prev;
         prev = dn;
+        ev = w.evaluate(beam, st, pts_new, fresh.then_some(tangent));
+        iterations += 1;
+        full_step = true;
+        // Line search: where the potential rises again at the full correction (a stick/slip
+        // kink was overshot: the slope -r . dq changed sign), step back to the root of the
+        // slope's secant.
+        let rises = dot(&w.r, &w.dq);
+        if ev.is_some() && decrement > 0.0 && rises < 0.0 {
+            let alpha = decrement / (decrement - rises);
+            if alpha < opts.backtrack && iterations < opts.max_iterations {
+                step_by(beam, st, &w.dq, alpha - 1.0, gamma_p, beta_p);
+                ev = w.evaluate(beam, st, pts_new, fresh.then_some(tangent));
+                iterations += 1;
+                full_step = false;
+            }
+        }
     }
     match outcome {
         Some(ev) => {
@@ -764,6 +834,45 @@ fn alpha_step(
         }
         None => Err(iterations),
     }
+}
+
+/// Length scale of each free coordinate: 1 for a position, the element length for a slope.
+pub(crate) fn length_scales(beam: &Beam) -> Vec<f64> {
+    let nd = beam.node_coords();
+    let mut scale = vec![0.0; beam.dofs()];
+    for g in 0..beam.coords() {
+        if let Some(i) = beam.free_index(g) {
+            scale[i] = if g % nd < nd / 2 {
+                1.0
+            } else {
+                beam.element_length()
+            };
+        }
+    }
+    scale
+}
+
+/// Moves the generalized-alpha iterate by `-alpha dq`: coordinates, and velocities and
+/// accelerations with them.
+fn step_by(beam: &Beam, st: &mut AlphaState, dq: &[f64], alpha: f64, gamma_p: f64, beta_p: f64) {
+    add_free(beam, &mut st.q, -alpha, dq);
+    for ((v, a), d) in st.vf.iter_mut().zip(st.acc.iter_mut()).zip(dq) {
+        *v -= alpha * gamma_p * d;
+        *a -= alpha * beta_p * d;
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// The largest displacement a correction `dq` of the free coordinates makes (m): positions as
+/// they are, slopes times `scale` (the element length: the displacement a slope change makes
+/// across an element).
+pub(crate) fn displacement(dq: &[f64], scale: &[f64]) -> f64 {
+    dq.iter()
+        .zip(scale)
+        .fold(0.0f64, |a, (x, s)| a.max((x * s).abs()))
 }
 
 /// Newton residual of the free coordinates, `r = M q'' + Q_e - Q_g`, from `mv = M q''`,
@@ -815,6 +924,9 @@ fn generalized_alpha(
         rot: Corotation::new(beam, beam.reference()),
         stale: false,
         acc_pred: zeros.clone(),
+        scale: length_scales(beam),
+        mass: beam.spec().mass_per_length * beam.length(),
+        motion: 0.0,
     };
     gather_free(beam, beam.gravity_force(), &mut w.g_free);
     let mut v = vec![0.0; beam.coords()];

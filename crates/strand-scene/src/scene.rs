@@ -818,7 +818,7 @@ fn beam(
             field,
             format!(
                 "{elements} element(s) of {l:.4e} m each span {:.4e} wire pitches (P = {pitch:.4e} \
-                 m); the pitch rule puts 3 bending points on every quarter pitch, {per_element:.4e} \
+                 m); the pitch rule puts one bending point on every quarter pitch, {per_element:.4e} \
                  per element, above the cap of {MAX_BENDING_POINTS}: use at least {:.0} elements",
                 l / pitch,
                 (elements as f64 * per_element / MAX_BENDING_POINTS as f64).ceil()

@@ -385,10 +385,10 @@ fn planar_only_if_everything_stays_in_the_plane() {
     assert!((s[0] + h).abs() < 1e-15 && s[1] == 0.0 && (s[2] - h).abs() < 1e-15);
 }
 
-/// Counts from the scene follow the rules the models build with. The pitch rule puts 3
-/// bending points on every quarter pitch (P = 0.0432 m here): one element of 1e5 m would ask
-/// for 2.78e7 points, above the cap per element; 10,000 elements of 10 m stay under the cap
-/// (2781 each) but need about 43 GiB together. The traditional beam (4 points per element)
+/// Counts from the scene follow the rules the models build with. The pitch rule puts one
+/// bending point on every quarter pitch (P = 0.0432 m here): one element of 1e5 m would ask
+/// for 9.27e6 points, above the cap per element; 10,000 elements of 10 m stay under the cap
+/// (927 each) but need more than the memory bound together. The traditional beam (4 points per element)
 /// takes the same strand in one element.
 #[test]
 fn counts_follow_the_pitch_rule_and_its_cap() {
@@ -398,14 +398,14 @@ fn counts_follow_the_pitch_rule_and_its_cap() {
     let e = Scene::parse(&s.to_string()).unwrap_err();
     assert_path(&e, "models.equivalent.elements");
     assert!(
-        e.message.contains("2.7805e7 per element") && e.message.contains("use at least 9052"),
+        e.message.contains("9.2684e6 per element") && e.message.contains("use at least 9052"),
         "{e}"
     );
     s["models"] = json!({ "equivalent": { "elements": 10000 } });
     let e = Scene::parse(&s.to_string()).unwrap_err();
     assert_path(&e, "models.equivalent.elements");
     assert!(
-        e.message.contains("2.7810e7 in all") && e.message.contains("GiB"),
+        e.message.contains("9.2700e6 in all") && e.message.contains("GiB"),
         "{e}"
     );
     s["models"] = json!({ "traditional": { "elements": 1 } });

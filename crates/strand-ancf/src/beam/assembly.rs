@@ -4,7 +4,7 @@
 #[cfg(test)]
 use nalgebra::DMatrix;
 
-use super::{Beam, BeamError, ElementKind, Evaluation, PointState};
+use super::{Beam, BeamError, ElementKind, Evaluation, PointState, Tangent};
 use crate::band::BandMatrix;
 use crate::planar::PlanarMatrix;
 use crate::spatial::SpatialMatrix;
@@ -29,7 +29,8 @@ impl Beam {
         tangent: Option<&mut BandMatrix>,
         points: Option<&mut [PointState]>,
     ) -> Result<Evaluation, BeamError> {
-        self.internal_frozen(q, q, slip, trial, force, tangent, points)
+        let tangent = tangent.map(|t| (t, Tangent::Exact));
+        self.assemble(q, q, slip, trial, force, tangent, points)
     }
 
     /// [`Self::internal`] at coordinates `q` with the mean strains that each element's section
@@ -43,7 +44,36 @@ impl Beam {
         slip: &[f64],
         trial: &mut [f64],
         force: &mut [f64],
-        mut tangent: Option<&mut BandMatrix>,
+        tangent: Option<&mut BandMatrix>,
+        points: Option<&mut [PointState]>,
+    ) -> Result<Evaluation, BeamError> {
+        let tangent = tangent.map(|t| (t, Tangent::Exact));
+        self.assemble(q, means_at, slip, trial, force, tangent, points)
+    }
+
+    /// [`Self::internal`] with a choice of tangent.
+    pub fn internal_with(
+        &self,
+        q: &[f64],
+        slip: &[f64],
+        trial: &mut [f64],
+        force: &mut [f64],
+        tangent: Option<(&mut BandMatrix, Tangent)>,
+        points: Option<&mut [PointState]>,
+    ) -> Result<Evaluation, BeamError> {
+        self.assemble(q, q, slip, trial, force, tangent, points)
+    }
+
+    /// The forces and the chosen tangent with the neighbours' mean strains taken at `means_at`.
+    #[allow(clippy::too_many_arguments)]
+    fn assemble(
+        &self,
+        q: &[f64],
+        means_at: &[f64],
+        slip: &[f64],
+        trial: &mut [f64],
+        force: &mut [f64],
+        tangent: Option<(&mut BandMatrix, Tangent)>,
         mut points: Option<&mut [PointState]>,
     ) -> Result<Evaluation, BeamError> {
         if self.frame_state_per_point() > 0
@@ -57,6 +87,14 @@ impl Beam {
                 self.state_len()
             )));
         }
+        let (mut tangent, kind) = match tangent {
+            Some((t, kind)) => (Some(t), kind),
+            None => (None, Tangent::Exact),
+        };
+        let (exact, unloading) = match kind {
+            Tangent::Exact => (true, 0.0),
+            Tangent::Iteration { unloading } => (false, unloading),
+        };
         force.fill(0.0);
         if let Some(t) = tangent.as_deref_mut() {
             t.fill_zero();
@@ -79,10 +117,12 @@ impl Beam {
             let (ke, ev, sym): (&[f64], Evaluation, bool) = match self.spec.element {
                 ElementKind::Planar => {
                     let qe = self.planar_coords(q, e);
-                    let (f, ev, sym) = if want_k {
-                        self.element_planar(e, rule, &qe, &means, sl, tr, Some(&mut kp), pts)?
+                    let (f, ev, sym) = if want_k && exact {
+                        let k = Some((&mut kp, true));
+                        self.element_planar(e, rule, &qe, &means, sl, tr, k, pts)?
                     } else {
-                        let (f, ev) = self.planar_forces(e, rule, &qe, &means, sl, tr, pts)?;
+                        let k = want_k.then_some((&mut kp, unloading));
+                        let (f, ev) = self.planar_forces(e, rule, &qe, &means, sl, tr, k, pts)?;
                         (f, ev, true)
                     };
                     for a in 0..8 {
@@ -92,7 +132,7 @@ impl Beam {
                 }
                 ElementKind::Spatial => {
                     let qe = self.spatial_coords(q, e);
-                    let k = want_k.then_some(&mut ks);
+                    let k = want_k.then_some((&mut ks, exact));
                     let (f, ev, sym) =
                         self.element_spatial(e, rule, &qe, &means, sl, tr, k, pts)?;
                     for a in 0..12 {
@@ -178,13 +218,15 @@ impl Beam {
             ElementKind::Planar => {
                 let mut k = PlanarMatrix::zeros();
                 let qe = self.planar_coords(q, e);
-                self.element_planar(e, rule, &qe, m, &slip, &mut trial, Some(&mut k), None)?;
+                let tangent = Some((&mut k, true));
+                self.element_planar(e, rule, &qe, m, &slip, &mut trial, tangent, None)?;
                 DMatrix::from_column_slice(8, 8, k.as_slice())
             }
             ElementKind::Spatial => {
                 let mut k = SpatialMatrix::zeros();
                 let qe = self.spatial_coords(q, e);
-                self.element_spatial(e, rule, &qe, m, &slip, &mut trial, Some(&mut k), None)?;
+                let tangent = Some((&mut k, true));
+                self.element_spatial(e, rule, &qe, m, &slip, &mut trial, tangent, None)?;
                 DMatrix::from_column_slice(12, 12, k.as_slice())
             }
         })

@@ -24,9 +24,14 @@ impl Beam {
         means: &[f64; 2],
         slip: &[f64],
         trial: &mut [f64],
-        mut tangent: Option<&mut PlanarMatrix>,
+        tangent: Option<(&mut PlanarMatrix, bool)>,
         mut points: Option<&mut [PointState]>,
     ) -> Result<(PlanarVector, Evaluation, bool), BeamError> {
+        // `exact`: with the coupling `d M / d eps` (see [`Tangent`]).
+        let (mut tangent, exact) = match tangent {
+            Some((t, exact)) => (Some(t), exact),
+            None => (None, true),
+        };
         let kin = |source| BeamError::Kinematics { element: e, source };
         let ea = self.law.axial_stiffness();
         let mut f = PlanarVector::zeros();
@@ -111,7 +116,7 @@ impl Beam {
                     }
                 }
                 planar::add_hessian_lower(t, w, &bp.qp.row, &h);
-                if r.moment_strain != 0.0 {
+                if exact && r.moment_strain != 0.0 {
                     // d M / d eps_bar couples the curvature here to the axial points:
                     // w M_eps kappa_q eps_bar_q^T with eps_bar_q = sum_j interp_j eps_q[j] (the
                     // own element's part of the strain the law reads).
@@ -154,7 +159,10 @@ impl Beam {
     /// points) or `r'` and `r''` (bending points) are formed, and the hourglass term's strain
     /// gradients are folded into the scatter of each point's own force, so every point is
     /// mapped to the element coordinates once. This is the evaluation of every Newton
-    /// iteration that keeps its matrix and of every explicit step.
+    /// iteration that keeps its matrix and of every explicit step. With `material`, it also
+    /// builds the material part of the tangent ([`super::Tangent::Iteration`], with its share
+    /// of the slipping wires' stick stiffness) from the same gradients: a rank-one term per
+    /// point.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn planar_forces(
         &self,
@@ -164,8 +172,16 @@ impl Beam {
         means: &[f64; 2],
         slip: &[f64],
         trial: &mut [f64],
+        material: Option<(&mut PlanarMatrix, f64)>,
         mut points: Option<&mut [PointState]>,
     ) -> Result<(PlanarVector, Evaluation), BeamError> {
+        let (mut material, unloading) = match material {
+            Some((m, u)) => (Some(m), u),
+            None => (None, 0.0),
+        };
+        if let Some(m) = material.as_deref_mut() {
+            m.as_mut_slice().fill(0.0);
+        }
         let kin = |source| BeamError::Kinematics { element: e, source };
         let q = qe.as_slice();
         let ea = self.law.axial_stiffness();
@@ -197,6 +213,20 @@ impl Beam {
                 add_slope_gradient(&mut f, a, &ap.row.ds, &t_a[j]);
             }
             ev.energy += 0.5 * c * d * d;
+            if let Some(m) = material.as_deref_mut() {
+                // EA on each axial strain's gradient; the penalty on the hourglass strain's.
+                let mut g = [0.0; 8];
+                add_slope_gradient(&mut g, 1.0 / n, &rule.mid.ds, &dr);
+                for (j, ap) in rule.axial.iter().enumerate() {
+                    let mut gj = [0.0; 8];
+                    add_slope_gradient(&mut gj, 1.0, &ap.row.ds, &t_a[j]);
+                    add_outer_lower(m, ap.weight * ea, &gj);
+                    for (x, y) in g.iter_mut().zip(&gj) {
+                        *x -= mean * y;
+                    }
+                }
+                add_outer_lower(m, c, &g);
+            }
         }
         let ws = self.state_per_point();
         let linear = self.law.is_linear();
@@ -234,6 +264,20 @@ impl Beam {
                 f[2 * k] += c1 * ka[0] + c2 * kb[0];
                 f[2 * k + 1] += c1 * ka[1] + c2 * kb[1];
             }
+            if let Some(m) = material.as_deref_mut() {
+                // dM/dkappa on the curvature's gradient, slipping wires at `unloading` of
+                // their stick stiffness.
+                let mut g = [0.0; 8];
+                for k in 0..4 {
+                    g[2 * k] = row.ds[k] * ka[0] + row.dds[k] * kb[0];
+                    g[2 * k + 1] = row.ds[k] * ka[1] + row.dds[k] * kb[1];
+                }
+                let k = r.moment_curvature + unloading * (bp.stick - r.moment_curvature).max(0.0);
+                add_outer_lower(m, bp.qp.weight * k, &g);
+            }
+        }
+        if let Some(m) = material {
+            mirror_lower(m);
         }
         self.check_force(e, f.as_slice())?;
         Ok((PlanarVector::from(f), ev))
@@ -331,6 +375,29 @@ fn bend_kinematics(points: &[BendPoint], q: &[f64], out: &mut [BendKinematics; L
             ],
             kb: [-a[l][1] * g[l], a[l][0] * g[l]],
         };
+    }
+}
+
+/// Copies the lower triangle of the column-major `m` onto the upper one.
+#[inline(always)]
+fn mirror_lower(m: &mut PlanarMatrix) {
+    let d = m.as_mut_slice();
+    for col in 1..8 {
+        for row in 0..col {
+            d[8 * col + row] = d[8 * row + col];
+        }
+    }
+}
+
+/// `m += c g g^T`, on and below the diagonal only.
+#[inline(always)]
+fn add_outer_lower(m: &mut PlanarMatrix, c: f64, g: &[f64; 8]) {
+    // Column-major: column `col` is `data[8 col..8 col + 8]`.
+    for (col, column) in m.as_mut_slice().chunks_exact_mut(8).enumerate() {
+        let gc = c * g[col];
+        for (x, y) in column[col..].iter_mut().zip(&g[col..]) {
+            *x += gc * y;
+        }
     }
 }
 

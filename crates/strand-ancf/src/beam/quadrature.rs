@@ -5,7 +5,9 @@ use strand_core::{SectionLaw, Station};
 
 use super::strain_recovery::recovery_weights;
 use super::{AXIAL_POINTS, BeamError, BeamSpec};
-use crate::shape::{QuadraturePoint, ShapeRow, element_quadrature, gauss_legendre};
+use crate::shape::{
+    MAX_GAUSS_POINTS, QuadraturePoint, ShapeRow, element_quadrature, gauss_legendre,
+};
 
 /// One bending integration point.
 #[derive(Debug, Clone)]
@@ -17,6 +19,8 @@ pub(crate) struct BendPoint {
     pub interp: [f64; AXIAL_POINTS],
     /// Weights of the mean strains of the elements [`ElementRule::others`].
     pub others: [f64; 2],
+    /// Planar bending stiffness with every wire sticking (N m^2).
+    pub stick: f64,
 }
 
 /// Quadrature of one element (all elements have the same length but different stations).
@@ -33,13 +37,14 @@ pub(crate) struct ElementRule {
 /// Most bending points the pitch rule may put in one element: 1024 quarter pitches (an
 /// element spanning 256 pitches). A cubic element's curvature cannot follow the strand over
 /// more; more elements resolve the same points better.
-pub const MAX_BENDING_POINTS: usize = 3 * 1024;
+pub const MAX_BENDING_POINTS: usize = 1024;
 
 /// Bending points the pitch rule puts in an element of length `l` (m) for the wire pitch
-/// `pitch` (m): 3 Gauss points on each of `ceil(4 l / P)` sub-intervals. Computed in floating
-/// point so that it cannot overflow; compare with [`MAX_BENDING_POINTS`] before building.
+/// `pitch` (m): one Gauss point per quarter pitch, `max(4, ceil(4 l / P))`. Computed in
+/// floating point so that it cannot overflow; compare with [`MAX_BENDING_POINTS`] before
+/// building.
 pub fn pitch_rule_points(l: f64, pitch: f64) -> f64 {
-    3.0 * (4.0 * l / pitch).ceil().max(1.0)
+    (4.0 * l / pitch).ceil().max(4.0)
 }
 
 /// Fewest elements, from `n` elements asking for `points` bending points each, that keep the
@@ -75,8 +80,11 @@ pub(super) fn element_rule(
                     min_elements(spec.elements, points)
                 )));
             }
-            let sub = points as usize / 3;
-            let rule = gauss_legendre(3).map_err(setup)?;
+            // One Gauss point per quarter pitch, at least 4; elements longer than
+            // `MAX_GAUSS_POINTS` quarter pitches are split into equal parts.
+            let n = points as usize;
+            let sub = n.div_ceil(MAX_GAUSS_POINTS);
+            let rule = gauss_legendre(n.div_ceil(sub)).map_err(setup)?;
             let h = l / sub as f64;
             for k in 0..sub {
                 pts.extend(rule.on_interval(k as f64 * h, (k + 1) as f64 * h));
@@ -94,12 +102,14 @@ pub(super) fn element_rule(
         .map(|(x, weight)| {
             let (interp, idx, w) = recovery_weights(e, spec.elements, x, l, &xa);
             others = idx;
+            let station = law.station(x0 + x);
             BendPoint {
                 qp: QuadraturePoint {
                     weight,
                     row: ShapeRow::new(x, l),
                 },
-                station: law.station(x0 + x),
+                stick: law.planar_stick_stiffness(&station),
+                station,
                 interp,
                 others: w,
             }

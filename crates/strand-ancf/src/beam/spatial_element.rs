@@ -24,9 +24,15 @@ impl Beam {
         means: &[f64; 2],
         state: &[f64],
         trial: &mut [f64],
-        mut tangent: Option<&mut SpatialMatrix>,
+        tangent: Option<(&mut SpatialMatrix, bool)>,
         mut points: Option<&mut [PointState]>,
     ) -> Result<(SpatialVector, Evaluation, bool), BeamError> {
+        // `exact`: with the coupling `d M / d eps` and the law's coupling of the two bending
+        // directions (see [`Tangent`]).
+        let (mut tangent, exact) = match tangent {
+            Some((t, exact)) => (Some(t), exact),
+            None => (None, true),
+        };
         let kin = |source| BeamError::Kinematics { element: e, source };
         let ea = self.law.axial_stiffness();
         let mut f = SpatialVector::zeros();
@@ -100,15 +106,22 @@ impl Beam {
                 SectionFrame::write_state(&s2.first.tangent, &s2.first.axes[1], ft);
                 kappa = s2.first.kappa;
                 r = self.law.vector(&bp.station, eps, kappa, sl, tr);
+                let mut dm_dkappa = r.moment_curvature;
+                if !exact {
+                    // Without the coupling of the two bending directions through the law
+                    // (the friction limits turning with the bending direction): not symmetric,
+                    // and zero one way for planar bending, so that a planar scene stays planar.
+                    (dm_dkappa[0][1], dm_dkappa[1][0]) = (0.0, 0.0);
+                }
                 let sec = SpatialSection {
                     m: r.moment,
-                    dm_dkappa: r.moment_curvature,
+                    dm_dkappa,
                     ..Default::default()
                 };
                 spatial::add_gradient(&mut f, w, &bp.qp.row, &s2.force(&sec));
                 spatial::add_hessian(t, w, &bp.qp.row, &s2.tangent(&sec));
-                symmetric &= r.moment_curvature[0][1] == r.moment_curvature[1][0];
-                if r.moment_strain != [0.0; 2] {
+                symmetric &= dm_dkappa[0][1] == dm_dkappa[1][0];
+                if exact && r.moment_strain != [0.0; 2] {
                     symmetric = false;
                     let mut ge = SpatialVector::zeros();
                     for j in 0..AXIAL_POINTS {

@@ -409,6 +409,13 @@ impl SectionLaw {
         }
     }
 
+    /// Bending stiffness for a planar curvature with every wire sticking, `K_min + sum_i
+    /// K_stick_i` (N m^2): the largest tangent [`Self::planar`] gives at `st`.
+    pub fn planar_stick_stiffness(&self, st: &Station) -> f64 {
+        let k = self.layer.map_or(0.0, |l| l.k);
+        self.base_bending + st.planar.lever.iter().map(|a| k * a * a).sum::<f64>()
+    }
+
     /// Whether the law is linear: no wire layer, so [`Self::planar_linear`] is the whole of
     /// [`Self::planar`] (the `constant` law, plain wires).
     #[inline]
