@@ -145,6 +145,22 @@ impl BandMatrix {
         }
     }
 
+    /// `y = |A| |x|`, entry by entry: `y_i = sum_j |a_ij| |x_j|`, the scale of the round-off in
+    /// `A x` (each term carries a relative error of the order of the unit round-off).
+    pub fn abs_mul_vec(&self, x: &[f64], y: &mut [f64]) {
+        let w = self.width();
+        for (i, yi) in y.iter_mut().enumerate() {
+            let lo = i.saturating_sub(self.kl);
+            let hi = (i + self.ku).min(self.n - 1);
+            let start = i * w + (lo + self.kl - i);
+            *yi = self.data[start..start + (hi - lo + 1)]
+                .iter()
+                .zip(&x[lo..=hi])
+                .map(|(a, b)| (a * b).abs())
+                .sum();
+        }
+    }
+
     /// `self += a * other` (same shape).
     pub fn add_scaled(&mut self, a: f64, other: &BandMatrix) {
         debug_assert_eq!((self.n, self.kl, self.ku), (other.n, other.kl, other.ku));

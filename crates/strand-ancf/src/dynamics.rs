@@ -28,6 +28,7 @@ use crate::beam::{Beam, BeamError, Evaluation, PointState, Tangent};
 use crate::corotation::Corotation;
 use crate::initial::InitialState;
 use crate::moving_support::Drive;
+use crate::measure::{displacement, dot, length_scales};
 use crate::statics::{add_free, gather_free};
 
 pub use crate::stability::stable_step;
@@ -836,22 +837,6 @@ fn alpha_step(
     }
 }
 
-/// Length scale of each free coordinate: 1 for a position, the element length for a slope.
-pub(crate) fn length_scales(beam: &Beam) -> Vec<f64> {
-    let nd = beam.node_coords();
-    let mut scale = vec![0.0; beam.dofs()];
-    for g in 0..beam.coords() {
-        if let Some(i) = beam.free_index(g) {
-            scale[i] = if g % nd < nd / 2 {
-                1.0
-            } else {
-                beam.element_length()
-            };
-        }
-    }
-    scale
-}
-
 /// Moves the generalized-alpha iterate by `-alpha dq`: coordinates, and velocities and
 /// accelerations with them.
 fn step_by(beam: &Beam, st: &mut AlphaState, dq: &[f64], alpha: f64, gamma_p: f64, beta_p: f64) {
@@ -860,19 +845,6 @@ fn step_by(beam: &Beam, st: &mut AlphaState, dq: &[f64], alpha: f64, gamma_p: f6
         *v -= alpha * gamma_p * d;
         *a -= alpha * beta_p * d;
     }
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
-/// The largest displacement a correction `dq` of the free coordinates makes (m): positions as
-/// they are, slopes times `scale` (the element length: the displacement a slope change makes
-/// across an element).
-pub(crate) fn displacement(dq: &[f64], scale: &[f64]) -> f64 {
-    dq.iter()
-        .zip(scale)
-        .fold(0.0f64, |a, (x, s)| a.max((x * s).abs()))
 }
 
 /// Newton residual of the free coordinates, `r = M q'' + Q_e - Q_g`, from `mv = M q''`,

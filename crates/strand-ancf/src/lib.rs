@@ -30,6 +30,7 @@ pub mod error;
 pub mod initial;
 pub mod load;
 pub mod mass;
+mod measure;
 mod moving_support;
 pub mod planar;
 mod scatter;

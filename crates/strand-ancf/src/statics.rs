@@ -1,39 +1,68 @@
-//! Static equilibrium `Q_e(q) = lambda Q_g` by Newton-Raphson with load stepping (SPEC 5).
+//! Static equilibrium `Q_e(q) = lambda Q_g` (SPEC 5) by continuation in the load factor
+//! lambda from 0 to 1.
 //!
-//! The load factor lambda rises from 0 to 1 in steps; each step is solved by Newton on the
-//! analytic tangent with a backtracking line search on the residual norm. A step that fails
-//! (no convergence, a singular tangent, a degenerate element) is cut in half and retried from
-//! the last converged state; a step that converged quickly lets the next one grow. The
-//! `hysteretic` law's slip state (and the spatial element's section frames) is committed after
-//! every converged step, so the static path follows the load steps. Moving supports take the
-//! last row of their tables with the load factor.
+//! The equilibrium path of a soft strand is far from linear in the load: the section-3
+//! cantilever (q L^3 / K_min of about 120) drops most of its way under the first few per cent
+//! of its weight and then hangs, stiffening as it straightens. Equal load steps are too large
+//! at the start and too small at the end, and a step's Newton iteration from the last state
+//! crosses the large rotations of the soft start with a linear tangent (it took 250 load steps,
+//! 3882 iterations and 52 cut steps on the section-3 strand under g = 12). So the steps follow
+//! the path instead:
+//!
+//! * step length: measured along the path as the largest displacement of the strand (slopes
+//!   counted by the displacement they make across an element), adapted to the Newton
+//!   iterations of the last step;
+//! * predictor: along the secant through the last two equilibria (the tangent `K^-1 Q_g` at the
+//!   start), so the load factor of a step follows from its displacement;
+//! * corrector: Newton on the equilibrium and the pseudo arc-length condition that the
+//!   correction is orthogonal (in length units) to the predictor's displacement (Keller), by
+//!   bordering: two solves with one factorization. The load factor is an unknown, so a path
+//!   that turns back in the load (a limit point) is followed through it. The last step ends at
+//!   lambda = 1 exactly: Newton at fixed load from the predictor where it crosses 1.
+//! * globalization: Deuflhard's natural monotonicity test as line search (affine invariant, so
+//!   the large transient axial residuals of a thin beam do not stall it); a step whose Newton
+//!   iteration fails is cut in half and retried.
+//!
+//! The `hysteretic` law's slip state is committed after every converged step, so its static
+//! path follows the continuation steps: each step's return mapping starts from the last
+//! step's slip. Under a load that only grows the wires load monotonically and the result
+//! barely depends on the steps (measured in `tests/statics.rs`). The spatial element's section
+//! frames are committed with it.
+//!
+//! Moving supports take the last row of their tables with the load factor. Their coordinates
+//! follow the load factor, which the bordered corrector does not differentiate, so with moving
+//! supports every step is corrected at the fixed load factor of its predictor (the secant
+//! predictor still sets the steps along the path); the start's tangent includes the equivalent
+//! load of the supports' displacement.
 
 use strand_core::LawKind;
 
 use crate::band::{BandMatrix, BandSolver};
 use crate::beam::{Beam, BeamError, PointState};
+use crate::measure::{displacement, length_scales, scaled_dot};
 
 /// Settings of the static solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StaticOptions {
-    /// Initial number of equal load steps.
+    /// The first step's size: the load fraction `1 / load_steps`, or less, so that the strand
+    /// moves by at most `1 / load_steps` of its length in it. Later steps adapt.
     pub load_steps: usize,
     /// Convergence: residual norm below `tolerance` times the norm of the full load (the dead
-    /// load, or the equivalent load of a moving support's displacement if larger), or a full
-    /// Newton correction below `increment` times the strand length (the residual of stiff
-    /// axial springs has a round-off floor of about eps_mach EA) with the residual below 1e-6
-    /// of the load.
+    /// load, or the equivalent load of a moving support's displacement if larger) plus the
+    /// round-off the residual carries (the forces' sensitivity to the unit round-off of the
+    /// coordinates, `eps |K| |q|`).
     pub tolerance: f64,
-    /// Newton increment criterion, relative to the strand length.
-    pub increment: f64,
     /// Newton iterations per step before the step is cut.
     pub max_iterations: usize,
-    /// Smallest load step, as a fraction of the full load, before giving up.
+    /// Smallest step, as a fraction of the strand length, before giving up.
     pub min_step: f64,
     /// Most load steps tried (accepted or cut) beyond `load_steps` before giving up: a path
     /// of steps near `min_step` that converge and grow and are cut again would otherwise take
     /// up to `1 / min_step` steps of up to `max_iterations` Newton iterations each.
     pub max_attempts: usize,
+    /// Newton iterations a step aims at: the next step grows or shrinks by the square root of
+    /// this over the iterations the last one took (within a factor of 2).
+    pub target_iterations: usize,
 }
 
 impl Default for StaticOptions {
@@ -41,10 +70,10 @@ impl Default for StaticOptions {
         StaticOptions {
             load_steps: 20,
             tolerance: 1e-9,
-            increment: 1e-9,
             max_iterations: 30,
-            min_step: 1e-7,
+            min_step: 1e-9,
             max_attempts: 1000,
+            target_iterations: 5,
         }
     }
 }
@@ -60,11 +89,11 @@ pub struct StaticSolution {
     pub points: Vec<PointState>,
     /// Stored elastic energy (J).
     pub energy: f64,
-    /// Accepted load steps.
+    /// Accepted steps.
     pub steps: usize,
     /// Newton iterations in total (accepted and rejected steps).
     pub iterations: usize,
-    /// Load steps that were cut.
+    /// Steps that were cut.
     pub cuts: usize,
     /// Final residual norm relative to the load.
     pub residual: f64,
@@ -73,10 +102,10 @@ pub struct StaticSolution {
 /// Why a static solve failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum StaticError {
-    /// The load step shrank below the minimum.
+    /// The step shrank below the minimum.
     #[error(
-        "no equilibrium found beyond load fraction {reached:.6} of the full load: the load step \
-         fell below {min_step:e} ({law} law){detail}"
+        "no equilibrium found beyond load fraction {reached:.6} of the full load: the step \
+         fell below {min_step:e} of the strand length ({law} law){detail}"
     )]
     Stalled {
         /// Load fraction of the last converged state.
@@ -155,10 +184,24 @@ struct Work {
     r: Vec<f64>,
     dq: Vec<f64>,
     s: Vec<f64>,
+    /// `K^-1 Q_g` (free coordinates): the correction's response to the load factor.
+    b: Vec<f64>,
     trial: Vec<f64>,
     q_try: Vec<f64>,
     k: BandMatrix,
     solver: BandSolver,
+    /// Length scale of each free coordinate ([`length_scales`]).
+    scale: Vec<f64>,
+    /// Workspace of [`converged`].
+    round_off: [Vec<f64>; 2],
+}
+
+/// Where a continuation step's corrector may move: along the pseudo arc-length hyperplane
+/// orthogonal to `direction` (the predictor's displacement, free coordinates), the load
+/// factor with it; or at the fixed load factor of the predictor.
+enum Constraint<'a> {
+    ArcLength { direction: &'a [f64] },
+    FixedLoad,
 }
 
 /// Solves the static problem of `beam` under its gravity load. `progress` receives the
@@ -175,72 +218,151 @@ pub fn solve_static(
         r: vec![0.0; n],
         dq: vec![0.0; n],
         s: vec![0.0; n],
+        b: vec![0.0; n],
         trial: beam.initial_state(),
         q_try: beam.reference().to_vec(),
         k: BandMatrix::zeros(n, b, b),
         solver: BandSolver::default(),
+        scale: length_scales(beam),
+        round_off: [vec![0.0; n], vec![0.0; n]],
     };
     let mut g_free = vec![0.0; n];
     gather_free(beam, beam.gravity_force(), &mut g_free);
-    let mut load_norm = norm(&g_free);
+    // A moving support loads the strand too: the elastic force of its displacement with the
+    // rest of the strand straight, the equivalent load of the displacement (taken at a small
+    // fraction of it, where the strand responds linearly, and scaled up).
+    let mut support_load = vec![0.0; n];
     if beam.has_moving_supports() {
-        // A moving support loads the strand too: the elastic force of its displacement with
-        // the rest of the strand straight, the equivalent load of the displacement (taken at
-        // a small fraction of it, where the strand responds linearly, and scaled up).
         let fraction = 1e-6;
         beam.move_supports_static(&mut w.q_try, fraction);
         let slip = beam.initial_state();
-        let r = residual(beam, &mut w, &slip, &g_free, 0.0, false)?;
-        load_norm = load_norm.max(r / fraction);
+        residual(beam, &mut w, &slip, &g_free, 0.0, false)?;
+        for (p, r) in support_load.iter_mut().zip(&w.r) {
+            *p = -r / fraction;
+        }
         w.q_try.copy_from_slice(beam.reference());
     }
-    let load_norm = load_norm.max(f64::MIN_POSITIVE);
+    let load_norm = norm(&g_free)
+        .max(norm(&support_load))
+        .max(f64::MIN_POSITIVE);
+    let length = beam.length();
+    let steps_hint = opts.load_steps.max(1) as f64;
 
     let mut q = beam.reference().to_vec();
     let mut slip = beam.initial_state();
     let mut lambda = 0.0;
-    let mut step = 1.0 / opts.load_steps.max(1) as f64;
+    // The path's direction in (free coordinates, load factor), scaled to a unit largest
+    // displacement: from the tangent at the start, then from the secant of the last step.
+    let mut dir_q = vec![0.0; n];
+    let mut dir_l;
+    // The start's tangent: d q / d lambda = K^-1 (Q_g + the supports' equivalent load).
+    residual(beam, &mut w, &slip, &g_free, 0.0, true)?;
+    if !w.solver.factorize(&w.k) {
+        return Err(StaticError::Stalled {
+            reached: 0.0,
+            min_step: opts.min_step,
+            law: beam.law().kind().name(),
+            detail: ": singular tangent at the start".into(),
+            last: None,
+        });
+    }
+    for ((d, g), p) in dir_q.iter_mut().zip(&g_free).zip(&support_load) {
+        *d = g + p;
+    }
+    w.solver.solve(&mut dir_q);
+    let first = displacement(&dir_q, &w.scale);
+    // Step length (m): the first step's load fraction 1 / load_steps, or less so that the
+    // strand moves by at most L / load_steps.
+    let mut ds = if first > 0.0 && first.is_finite() {
+        (first / steps_hint).min(length / steps_hint)
+    } else {
+        length / steps_hint
+    };
+    if first > 0.0 && first.is_finite() {
+        dir_q.iter_mut().for_each(|x| *x /= first);
+        dir_l = 1.0 / first;
+    } else {
+        // No load, or none the tangent resolves: one step at the full load.
+        dir_q.fill(0.0);
+        dir_l = f64::INFINITY;
+    }
     let (mut steps, mut iterations, mut cuts) = (0, 0, 0);
-    let mut residual = 0.0;
+    let mut residual_left = 0.0;
+    let mut step_q = vec![0.0; n];
+    // Set when a step's corrector carried the load factor past 1: the step is taken again to
+    // end at lambda = 1.
+    let mut finish = false;
     let budget = opts.load_steps.saturating_add(opts.max_attempts);
     while lambda < 1.0 {
         if steps + cuts >= budget {
             let last = solution(beam, &mut w, q, slip, (steps, iterations, cuts))
                 .ok()
                 .map(|mut s| {
-                    s.residual = residual;
+                    s.residual = residual_left;
                     Box::new(s)
                 });
+            // The step length as a load fraction, along the last direction.
+            let step = ds * dir_l;
             return Err(StaticError::Budget {
                 reached: lambda,
                 tried: steps + cuts,
                 cuts,
-                step,
+                step: if step.is_finite() { step } else { 1.0 - lambda },
                 law: beam.law().kind().name(),
                 last,
             });
         }
-        let target = (lambda + step).min(1.0);
+        // Predictor along the direction; the step that would pass lambda = 1 ends there.
+        let to_end = (1.0 - lambda) / dir_l;
+        let last = finish || !(to_end > ds && dir_l > 0.0);
+        let h = if last { to_end.min(ds).max(0.0) } else { ds };
+        let h = if h.is_finite() { h } else { 0.0 };
+        let target = if last { 1.0 } else { lambda + h * dir_l };
         w.q_try.copy_from_slice(&q);
+        add_free(beam, &mut w.q_try, h, &dir_q);
         beam.move_supports_static(&mut w.q_try, target);
-        match newton(beam, opts, &mut w, &slip, &g_free, target, load_norm) {
-            Ok((its, res)) => {
+        let constraint = if last || beam.has_moving_supports() {
+            Constraint::FixedLoad
+        } else {
+            Constraint::ArcLength { direction: &dir_q }
+        };
+        match newton(
+            beam, opts, &mut w, &slip, &g_free, target, load_norm, constraint,
+        ) {
+            Ok((its, _, reached)) if reached > 1.0 => {
                 iterations += its;
-                residual = res;
+                finish = true;
+            }
+            Ok((its, res, reached)) => {
+                iterations += its;
+                residual_left = res;
+                // The secant of this step is the next direction.
+                for (g, x) in q.iter().enumerate() {
+                    if let Some(i) = beam.free_index(g) {
+                        step_q[i] = w.q_try[g] - x;
+                    }
+                }
+                let moved = displacement(&step_q, &w.scale);
+                if moved > 0.0 && reached != lambda {
+                    for (d, x) in dir_q.iter_mut().zip(&step_q) {
+                        *d = x / moved;
+                    }
+                    dir_l = (reached - lambda) / moved;
+                }
                 q.copy_from_slice(&w.q_try);
                 slip.copy_from_slice(&w.trial);
-                lambda = target;
+                lambda = reached;
                 steps += 1;
                 progress(lambda);
-                if its <= opts.max_iterations / 4 {
-                    step = (step * 1.5).min(1.0);
-                }
+                let target_its = opts.target_iterations.max(1) as f64;
+                let factor = (target_its / its.max(1) as f64).sqrt().clamp(0.5, 2.0);
+                ds = (ds * factor).min(length);
             }
             Err((its, detail)) => {
                 iterations += its;
                 cuts += 1;
-                step *= 0.5;
-                if step < opts.min_step {
+                ds *= 0.5;
+                if ds < opts.min_step * length {
                     let law = beam.law().kind();
                     let why = if law == LawKind::Paper {
                         "; the `paper` law is non-monotone (the moment drops when a wire starts \
@@ -252,7 +374,7 @@ pub fn solve_static(
                     let last = solution(beam, &mut w, q, slip, (steps, iterations, cuts))
                         .ok()
                         .map(|mut s| {
-                            s.residual = residual;
+                            s.residual = residual_left;
                             Box::new(s)
                         });
                     return Err(StaticError::Stalled {
@@ -267,7 +389,7 @@ pub fn solve_static(
         }
     }
     let mut sol = solution(beam, &mut w, q, slip, (steps, iterations, cuts))?;
-    sol.residual = residual;
+    sol.residual = residual_left;
     Ok(sol)
 }
 
@@ -331,6 +453,26 @@ fn residual(
     }
 }
 
+/// The unit round-offs a computed residual component may carry per unit of its sensitivity
+/// `(|K| |q|)_i` (the sums and products of the force evaluation; at Newton's stall on the
+/// section-3 strand the largest ratio was 11).
+const ROUND_OFF: f64 = 16.0;
+
+/// Whether the residual `w.r` at `w.q_try` is converged: every component within `tol` (N) or
+/// within the round-off it carries, estimated from the forces' sensitivity to the unit
+/// round-off `eps` of the coordinates, [`ROUND_OFF`] `eps (|K| |q|)_i` with the tangent `w.k`
+/// there. The stiff axial springs of a thin strand make that far larger than `eps` times the
+/// load along the strand (Newton stalls at 1.3e-9 of the section-3 strand's weight), and
+/// nothing across a straight strand, so that a tiny transverse load is still resolved.
+fn converged(beam: &Beam, w: &mut Work, tol: f64) -> bool {
+    let [q, kq] = &mut w.round_off;
+    gather_free(beam, &w.q_try, q);
+    w.k.abs_mul_vec(q, kq);
+    w.r.iter()
+        .zip(kq.iter())
+        .all(|(r, f)| r.abs() <= tol + ROUND_OFF * f64::EPSILON * f)
+}
+
 /// The element (0-based) and material coordinate (m) of the node that free coordinate `i`
 /// belongs to (the last element holds the end node).
 fn locate(beam: &Beam, i: usize) -> (usize, f64) {
@@ -353,35 +495,50 @@ fn largest_residual(beam: &Beam, r: &[f64]) -> String {
     format!("; the residual is largest at x = {x:.4} m (node of element {element})")
 }
 
-/// Newton iterations at load fraction `lambda` from `w.q_try`; Ok(iterations, relative
-/// residual) or Err(iterations, reason).
+/// Newton iterations from `w.q_try` at load fraction `lambda`, which `constraint` may let
+/// move; Ok(iterations, relative residual, load fraction reached) or Err(iterations, reason).
 ///
 /// Globalised by Deuflhard's natural monotonicity test: a trial step `alpha dq` is accepted
 /// when the simplified Newton correction at the trial point, `K^-1 r(q - alpha dq)` with the
 /// current factorization, is shorter than `(1 - alpha/4) |dq|`. Unlike a test on the residual
 /// norm it is affine invariant, so the large transient axial residual that a good step of a
 /// thin beam (EA l^2 >> EI) creates does not cause rejections.
+#[allow(clippy::too_many_arguments)]
 fn newton(
     beam: &Beam,
     opts: &StaticOptions,
     w: &mut Work,
     slip: &[f64],
     g_free: &[f64],
-    lambda: f64,
+    mut lambda: f64,
     load_norm: f64,
-) -> Result<(usize, f64), (usize, String)> {
+    constraint: Constraint<'_>,
+) -> Result<(usize, f64, f64), (usize, String)> {
     let tol = opts.tolerance * load_norm;
-    let small_step = opts.increment * beam.length();
     let mut r0 = residual(beam, w, slip, g_free, lambda, true).map_err(|e| (0, e.to_string()))?;
     for it in 1..=opts.max_iterations {
-        if r0 <= tol {
-            return Ok((it - 1, r0 / load_norm));
+        if converged(beam, w, tol) {
+            return Ok((it - 1, r0 / load_norm, lambda));
         }
         if !w.solver.factorize(&w.k) {
             return Err((it, "singular tangent".into()));
         }
+        // The correction q -= dq, lambda += dl: K dq = r - dl Q_g; with the arc-length
+        // condition direction . dq = 0 (in length units), dl = (t . K^-1 r) / (t . K^-1 Q_g).
         w.dq.copy_from_slice(&w.r);
         w.solver.solve(&mut w.dq);
+        let mut dl = 0.0;
+        if let Constraint::ArcLength { direction } = constraint {
+            w.b.copy_from_slice(g_free);
+            w.solver.solve(&mut w.b);
+            let tb = scaled_dot(direction, &w.b, &w.scale);
+            if tb != 0.0 && tb.is_finite() {
+                dl = scaled_dot(direction, &w.dq, &w.scale) / tb;
+                for (d, bi) in w.dq.iter_mut().zip(&w.b) {
+                    *d -= dl * bi;
+                }
+            }
+        }
         let dn = norm(&w.dq);
         if !dn.is_finite() {
             return Err((it, "non-finite Newton step".into()));
@@ -389,15 +546,25 @@ fn newton(
         let mut alpha = 1.0;
         loop {
             add_free(beam, &mut w.q_try, -alpha, &w.dq);
-            let trial = residual(beam, w, slip, g_free, lambda, true);
+            let trial = residual(beam, w, slip, g_free, lambda + alpha * dl, true);
             let simplified = trial.as_ref().ok().map(|_| {
                 w.s.copy_from_slice(&w.r);
                 w.solver.solve(&mut w.s);
+                if let Constraint::ArcLength { direction } = constraint {
+                    let tb = scaled_dot(direction, &w.b, &w.scale);
+                    if tb != 0.0 && tb.is_finite() {
+                        let dl = scaled_dot(direction, &w.s, &w.scale) / tb;
+                        for (d, bi) in w.s.iter_mut().zip(&w.b) {
+                            *d -= dl * bi;
+                        }
+                    }
+                }
                 norm(&w.s)
             });
             match (trial, simplified) {
                 (Ok(r), Some(sn)) if sn <= (1.0 - 0.25 * alpha) * dn || alpha <= 1.0 / 64.0 => {
                     r0 = r;
+                    lambda += alpha * dl;
                     break;
                 }
                 (Err(e), _) if alpha <= 1.0 / 64.0 => return Err((it, e.to_string())),
@@ -407,12 +574,9 @@ fn newton(
                 }
             }
         }
-        if alpha == 1.0 && dn <= small_step && r0 <= 1e-6 * load_norm {
-            return Ok((it, r0 / load_norm));
-        }
     }
-    if r0 <= tol {
-        Ok((opts.max_iterations, r0 / load_norm))
+    if converged(beam, w, tol) {
+        Ok((opts.max_iterations, r0 / load_norm, lambda))
     } else {
         Err((
             opts.max_iterations,

@@ -64,6 +64,44 @@ pub use quadrature::{MAX_BENDING_POINTS, pitch_rule_points};
 pub use sampling::SectionSample;
 pub use supports::SupportMotion;
 
+/// Round-off of the axial strains of an element with coordinates `q` (`dim` components per
+/// position or slope): `|r'| - 1` from `r' = sum_k S_k' q_k` carries about `eps_mach sum_k
+/// |S_k'| |q_k|`, far more than `eps_mach` where the positions are far from the origin.
+pub(crate) fn strain_round_off(rule: &ElementRule, q: &[f64], dim: usize) -> f64 {
+    let largest = rule
+        .axial
+        .iter()
+        .map(|ap| {
+            ap.row
+                .ds
+                .iter()
+                .zip(q.chunks_exact(dim))
+                .map(|(d, v)| d.abs() * v.iter().map(|x| x.abs()).sum::<f64>())
+                .sum::<f64>()
+        })
+        .fold(0.0, f64::max);
+    f64::EPSILON * largest
+}
+
+/// Strains within this many times their round-off ([`strain_round_off`]) are zero to the
+/// section law.
+const STRAIN_ROUND_OFF: f64 = 8.0;
+
+/// The strain the section law reads at a bending point: the assumed strain `eps`, or zero
+/// within [`STRAIN_ROUND_OFF`] times its round-off `round_off`. Only tension presses the wires
+/// on the core, so the friction limits follow the strain; a strand under a tiny transverse
+/// load has a tension of the order of the load squared, below that round-off, and friction
+/// limits taken from round-off would make its wires stick or slip at random (Newton then
+/// stalls; the stiffness without tension is `K_min`). The axial force keeps the strain as
+/// computed.
+pub(crate) fn law_strain(eps: f64, round_off: f64) -> f64 {
+    if eps.abs() <= STRAIN_ROUND_OFF * round_off {
+        0.0
+    } else {
+        eps
+    }
+}
+
 /// Which cable element a beam uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ElementKind {

@@ -6,6 +6,7 @@ use strand_core::PlanarResponse;
 
 use super::{
     AXIAL_POINTS, Beam, BeamError, BendPoint, ElementRule, Evaluation, HOURGLASS, PointState,
+    law_strain, strain_round_off,
 };
 use crate::error::check_stretch;
 use crate::planar::{self, PlanarAxial, PlanarCoords, PlanarMatrix, PlanarPoint, PlanarVector};
@@ -90,8 +91,9 @@ impl Beam {
         }
         // Bending points.
         let ws = self.state_per_point();
+        let round = strain_round_off(rule, qe.as_slice(), 2);
         for (i, bp) in rule.bend.iter().enumerate() {
-            let eps = bp.strain(&eps_a, means);
+            let eps = law_strain(bp.strain(&eps_a, means), round);
             let pt = PlanarPoint::at(qe, &bp.qp.row);
             // Empty for a law without state (ws = 0).
             let (sl, tr) = (
@@ -230,6 +232,7 @@ impl Beam {
         }
         let ws = self.state_per_point();
         let linear = self.law.is_linear();
+        let round = strain_round_off(rule, q, 2);
         // The kinematics of the bending points, LANES at a time: the square roots and
         // divisions of independent points side by side (packed, with the same rounding as
         // one by one), not each waiting on the last.
@@ -244,7 +247,7 @@ impl Beam {
                 }
             }
             let BendKinematics { kappa, ka, kb, .. } = kin_pts[lane];
-            let eps = bp.strain(&eps_a, means);
+            let eps = law_strain(bp.strain(&eps_a, means), round);
             // Empty for a law without state (ws = 0).
             let (sl, tr) = (
                 &slip[i * ws..(i + 1) * ws],

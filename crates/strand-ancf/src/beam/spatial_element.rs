@@ -4,7 +4,10 @@
 
 use nalgebra::Matrix6;
 
-use super::{AXIAL_POINTS, Beam, BeamError, ElementRule, Evaluation, HOURGLASS, PointState};
+use super::{
+    AXIAL_POINTS, Beam, BeamError, ElementRule, Evaluation, HOURGLASS, PointState, law_strain,
+    strain_round_off,
+};
 use crate::spatial::{
     self, SectionFrame, SpatialCoords, SpatialMatrix, SpatialPoint, SpatialSection, SpatialVector,
 };
@@ -90,8 +93,9 @@ impl Beam {
         }
         let ws = self.state_per_point();
         let wl = self.law_state_per_point();
+        let round = strain_round_off(rule, qe.as_slice(), 3);
         for (i, bp) in rule.bend.iter().enumerate() {
-            let eps = bp.strain(&eps_a, means);
+            let eps = law_strain(bp.strain(&eps_a, means), round);
             let pt = SpatialPoint::at(qe, &bp.qp.row);
             // The point's state: the law's slip state (empty for a law without state), then
             // its committed section frame.

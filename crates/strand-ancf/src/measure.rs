@@ -1,0 +1,46 @@
+//! Length measures of vectors of free coordinates, for the solvers' step sizes and
+//! convergence tests: a position coordinate is a length (m); a slope coordinate is
+//! dimensionless, and is measured by the displacement it makes across an element (times the
+//! element length), so that a correction of the slopes near a free end counts as much as the
+//! positions it moves, not as if a slope of 1e-8 were a displacement of 1e-8 m.
+
+use crate::beam::Beam;
+
+/// Length scale of each free coordinate: 1 for a position, the element length for a slope.
+pub(crate) fn length_scales(beam: &Beam) -> Vec<f64> {
+    let nd = beam.node_coords();
+    let mut scale = vec![0.0; beam.dofs()];
+    for g in 0..beam.coords() {
+        if let Some(i) = beam.free_index(g) {
+            scale[i] = if g % nd < nd / 2 {
+                1.0
+            } else {
+                beam.element_length()
+            };
+        }
+    }
+    scale
+}
+
+/// The largest displacement a change `dq` of the free coordinates makes (m), with the
+/// coordinates' length scales `scale` ([`length_scales`]).
+pub(crate) fn displacement(dq: &[f64], scale: &[f64]) -> f64 {
+    dq.iter()
+        .zip(scale)
+        .fold(0.0f64, |a, (x, s)| a.max((x * s).abs()))
+}
+
+/// `sum_i a_i b_i`.
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// `sum_i s_i^2 a_i b_i`: the inner product of two changes of the free coordinates in length
+/// units (m^2).
+pub(crate) fn scaled_dot(a: &[f64], b: &[f64], scale: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .zip(scale)
+        .map(|((x, y), s)| s * s * x * y)
+        .sum()
+}
