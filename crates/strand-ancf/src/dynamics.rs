@@ -27,8 +27,8 @@ use crate::band::{BandMatrix, BandSolver};
 use crate::beam::{Beam, BeamError, Evaluation, PointState, Tangent};
 use crate::corotation::Corotation;
 use crate::initial::InitialState;
+use crate::measure::{displacement, dot, length_scales, within_round_off};
 use crate::moving_support::Drive;
-use crate::measure::{displacement, dot, length_scales};
 use crate::statics::{add_free, gather_free};
 
 pub use crate::stability::stable_step;
@@ -600,27 +600,26 @@ impl AlphaWork {
 
     /// Newton tolerance of a step predicted at `st` (m): `increment` times the scale of the
     /// motion, the strand length or, if smaller, the largest of the displacement from the
-    /// reference so far and of the distances the current velocity and acceleration carry the
-    /// strand over the run's duration (a strand under a tiny load moves by tiny amounts, and an
-    /// absolute tolerance would accept its predictor); but not below the round-off of the
-    /// coordinates.
+    /// reference so far and of the distance the strand's current velocity and acceleration
+    /// (their root mean square over the mass) carry it over the run's duration (a strand under
+    /// a tiny load moves by tiny amounts, and an absolute tolerance would accept its
+    /// predictor). Corrections within the round-off of their coordinates are converged too
+    /// ([`within_round_off`]).
     fn tolerance(&mut self, beam: &Beam, opts: &DynamicOptions, st: &AlphaState) -> f64 {
         for (g, (x, x0)) in st.q.iter().zip(beam.reference()).enumerate() {
             if let Some(i) = beam.free_index(g) {
                 self.motion = self.motion.max((x - x0).abs() * self.scale[i]);
             }
         }
+        let mut rms = |x: &[f64]| {
+            beam.vector_mass().mul_vec(x, &mut self.mv);
+            (dot(x, &self.mv) / self.mass).max(0.0).sqrt()
+        };
         let t = opts.duration;
-        let coming = displacement(&st.vf, &self.scale) * t
-            + 0.5 * displacement(&st.alg, &self.scale) * t * t;
-        let l = beam.length();
-        (opts.increment * self.motion.max(coming).min(l)).max(ROUND_OFF * l)
+        let coming = rms(&st.vf) * t + 0.5 * rms(&st.alg) * t * t;
+        opts.increment * self.motion.max(coming).min(beam.length())
     }
 }
-
-/// Relative round-off of coordinates: Newton corrections below this times the strand length
-/// are not resolved.
-const ROUND_OFF: f64 = 64.0 * f64::EPSILON;
 
 /// Generalized-alpha parameters for spectral radius `rho`: (alpha_m, alpha_f, gamma, beta).
 fn alpha_parameters(rho: f64) -> (f64, f64, f64, f64) {
@@ -743,6 +742,14 @@ fn alpha_step(
         // correction promises (for a linear problem, twice its distance to the minimum), and
         // the slope of that potential along -dq.
         let decrement = dot(&w.r, &w.dq);
+        // The same correction in the inertia term's metric alone, beta' dq^T M dq (J): with a
+        // positive definite iteration matrix no more than the decrement, and a guard where the
+        // matrix is not (a strand in compression, a matrix kept from another state), whose
+        // decrement can be small or negative for a large correction.
+        let inertial = {
+            beam.vector_mass().mul_vec(&w.dq, &mut w.mv);
+            beta_p * dot(&w.dq, &w.mv)
+        };
         step_by(beam, st, &w.dq, 1.0, gamma_p, beta_p);
         // Converged when this correction, or the error left after it, is below `tol`: with
         // full steps contracting at the rate theta = dn / prev, the corrections still to
@@ -751,10 +758,10 @@ fn alpha_step(
         // law with slip state: the committed trial state belongs to the forces before this
         // correction, so the correction itself must be below `tol` (and its Newton path,
         // which decides where the slip is committed, is left as it was). Or when the
-        // decrement is below `energy_tol`: the correction measured in the energy norm of the
-        // iteration matrix, which weighs a correction by the energy it carries (the
-        // displacement is a largest value: a correction of one wire's slip state near the
-        // free end, carrying almost no energy, would hold it up).
+        // decrement (and the inertial measure, its guard) is below `energy_tol`: the correction
+        // measured in the energy norm of the iteration matrix, which weighs a correction by
+        // the energy it carries (the displacement is a largest value: a correction of one
+        // wire's slip state near the free end, carrying almost no energy, would hold it up).
         // The ledger uses the forces before this last correction: it moved q by at most
         // about `tol`, which changes the energies by O(tol |Q|), far below the integrator's
         // error.
@@ -764,7 +771,11 @@ fn alpha_step(
         } else {
             f64::INFINITY
         };
-        if dn <= tol || left <= tol || decrement <= energy_tol {
+        if dn <= tol
+            || left <= tol
+            || (decrement <= energy_tol && inertial <= energy_tol)
+            || within_round_off(beam, &w.dq, &st.q, &w.scale, tol)
+        {
             if linear && !fresh && theta.is_finite() && theta > opts.rebuild_rate {
                 w.stale = true;
             }

@@ -44,3 +44,32 @@ pub(crate) fn scaled_dot(a: &[f64], b: &[f64], scale: &[f64]) -> f64 {
         .map(|((x, y), s)| s * s * x * y)
         .sum()
 }
+
+/// Unit round-offs of a coordinate that a Newton correction of it may be lost in.
+pub(crate) const ROUND_OFF: f64 = 16.0;
+
+/// Whether every component of the correction `dq` (free coordinates) is within `tol` (m) or
+/// within the round-off of the positions it moves, both in length units (`scale`,
+/// [`length_scales`]; `q` all coordinates): a correction of a node's position or slope moves
+/// points near the node, whose positions are known only to the unit round-off of their size,
+/// so a position far from the origin cannot be corrected by less than its last bits, while a
+/// transverse coordinate near zero can.
+pub(crate) fn within_round_off(
+    beam: &Beam,
+    dq: &[f64],
+    q: &[f64],
+    scale: &[f64],
+    tol: f64,
+) -> bool {
+    let nd = beam.node_coords();
+    let dim = nd / 2;
+    q.chunks_exact(nd).enumerate().all(|(node, c)| {
+        (0..nd).all(|k| {
+            let g = node * nd + k;
+            beam.free_index(g).is_none_or(|i| {
+                let size = (c[k] * scale[i]).abs().max(c[k % dim].abs());
+                (dq[i] * scale[i]).abs() <= tol + ROUND_OFF * f64::EPSILON * size
+            })
+        })
+    })
+}

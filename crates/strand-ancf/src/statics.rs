@@ -60,6 +60,8 @@ pub struct StaticOptions {
     /// of steps near `min_step` that converge and grow and are cut again would otherwise take
     /// up to `1 / min_step` steps of up to `max_iterations` Newton iterations each.
     pub max_attempts: usize,
+    /// Largest step, as a fraction of the strand length.
+    pub max_step: f64,
     /// Newton iterations a step aims at: the next step grows or shrinks by the square root of
     /// this over the iterations the last one took (within a factor of 2).
     pub target_iterations: usize,
@@ -73,6 +75,7 @@ impl Default for StaticOptions {
             max_iterations: 30,
             min_step: 1e-9,
             max_attempts: 1000,
+            max_step: 1.0,
             target_iterations: 5,
         }
     }
@@ -277,7 +280,8 @@ pub fn solve_static(
         (first / steps_hint).min(length / steps_hint)
     } else {
         length / steps_hint
-    };
+    }
+    .min(opts.max_step * length);
     if first > 0.0 && first.is_finite() {
         dir_q.iter_mut().for_each(|x| *x /= first);
         dir_l = 1.0 / first;
@@ -356,7 +360,7 @@ pub fn solve_static(
                 progress(lambda);
                 let target_its = opts.target_iterations.max(1) as f64;
                 let factor = (target_its / its.max(1) as f64).sqrt().clamp(0.5, 2.0);
-                ds = (ds * factor).min(length);
+                ds = (ds * factor).min(opts.max_step * length);
             }
             Err((its, detail)) => {
                 iterations += its;

@@ -85,7 +85,7 @@ pub(crate) fn strain_round_off(rule: &ElementRule, q: &[f64], dim: usize) -> f64
 
 /// Strains within this many times their round-off ([`strain_round_off`]) are zero to the
 /// section law.
-const STRAIN_ROUND_OFF: f64 = 8.0;
+const STRAIN_ROUND_OFF: f64 = 64.0;
 
 /// The strain the section law reads at a bending point: the assumed strain `eps`, or zero
 /// within [`STRAIN_ROUND_OFF`] times its round-off `round_off`. Only tension presses the wires

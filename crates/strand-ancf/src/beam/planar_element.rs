@@ -275,7 +275,9 @@ impl Beam {
                     g[2 * k] = row.ds[k] * ka[0] + row.dds[k] * kb[0];
                     g[2 * k + 1] = row.ds[k] * ka[1] + row.dds[k] * kb[1];
                 }
-                let k = r.moment_curvature + unloading * (bp.stick - r.moment_curvature).max(0.0);
+                // Without tension the wires have no friction limit and never re-stick.
+                let share = if eps > 0.0 { unloading } else { 0.0 };
+                let k = r.moment_curvature + share * (bp.stick - r.moment_curvature).max(0.0);
                 add_outer_lower(m, bp.qp.weight * k, &g);
             }
         }

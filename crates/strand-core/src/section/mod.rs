@@ -810,8 +810,10 @@ fn planar_continuous(
         let e = lever * kappa;
         let (cap_pos, cap_neg) = (scale * gp[i], scale * gn[i]);
         let stick_force = k * e;
-        // Slipping on the stretched (k e > cap_pos) or the shortened (k e < -cap_neg) side.
-        let pos = stick_force > cap_pos;
+        // Slipping on the stretched (k e > cap_pos) or the shortened (k e < -cap_neg) side;
+        // without friction limits at any strain (see `slider`).
+        let free = cap_pos == 0.0 && cap_neg == 0.0;
+        let pos = stick_force > cap_pos || (free && stick_force >= 0.0);
         let neg = stick_force < -cap_neg;
         if !(pos || neg) {
             r.moment += stick_force * lever;
@@ -859,7 +861,8 @@ fn planar_hysteretic(
         let (cap_pos, cap_neg) = (scale * gp[i], scale * gn[i]);
         let committed = slip[i];
         let elastic = k * (e - committed);
-        let pos = elastic > cap_pos;
+        let free = cap_pos == 0.0 && cap_neg == 0.0;
+        let pos = elastic > cap_pos || (free && elastic >= 0.0);
         let neg = elastic < -cap_neg;
         if !(pos || neg) {
             trial[i] = committed;

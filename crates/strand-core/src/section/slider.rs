@@ -86,11 +86,15 @@ pub(crate) fn slider(
         slip,
         state: WireState::Slip,
     };
+    // Without friction limits (no tension presses the wire on the core) the wire carries no
+    // force at any strain: it slips, also at zero strain, where the stick branch would give
+    // the tangent a stiffness the force never has.
+    let free = cap_pos == 0.0 && cap_neg == 0.0;
     match kind {
         LawKind::Constant => stick(0.0, slip),
         LawKind::Continuous => {
             let cap = if e >= 0.0 { cap_pos } else { cap_neg };
-            if k * e.abs() <= cap {
+            if k * e.abs() <= cap && !free {
                 stick(k * e, slip)
             } else {
                 // Energy: integral of the moment, 1/2 k e_c^2 + cap (|e| - e_c), e_c = cap / k,
@@ -104,7 +108,7 @@ pub(crate) fn slider(
             let cap = if e >= 0.0 { cap_pos } else { cap_neg };
             // eq. (23): the stick stress reaches the slip stress divided by cos^2(alpha).
             let ec = cap * inv_k / paper_factor;
-            if e.abs() <= ec {
+            if e.abs() <= ec && !free {
                 stick(k * e, slip)
             } else {
                 // 1/2 k e_c^2 + cap (|e| - e_c) with e_c = cap / (k cos^2 alpha).
@@ -115,7 +119,7 @@ pub(crate) fn slider(
         }
         LawKind::Hysteretic => {
             let trial = k * (e - slip);
-            if trial > cap_pos {
+            if trial > cap_pos || (free && trial >= 0.0) {
                 let s = e - cap_pos * inv_k;
                 // The slip work books the energy change of a moving limit: no cap term.
                 sliding(
