@@ -1,12 +1,14 @@
 //! Cost of the strand beam on the paper's section-3 strand (L = 1 m, E = 2e9 Pa, 30 elements,
 //! `continuous` law, hanging shape): one element's forces and tangent, the full residual and
-//! tangent assembly, and steps of each integrator on the pinned pendulum.
+//! tangent assembly, the parts of a Newton iteration (with the exact tangent and with the
+//! material iteration matrix of the stick/slip laws), steps of each integrator on the pinned
+//! pendulum, and the static solves of the paper's scenes by continuation.
 
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use strand_ancf::band::{BandMatrix, BandSolver};
-use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support};
+use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support, Tangent};
 use strand_ancf::dynamics::{DynamicOptions, Scheme, run_dynamic, stable_step};
 use strand_ancf::statics::{StaticOptions, solve_static};
 use strand_core::{LawKind, SectionLaw, Strand, StrandSpec};
@@ -132,7 +134,7 @@ fn pendulum(kind: LawKind) -> Beam {
 fn paper_pendulum(c: &mut Criterion) {
     let mut g = c.benchmark_group("paper-fig14 pendulum, 1 s, generalized-alpha 1 ms");
     g.sample_size(10);
-    for kind in [LawKind::Constant, LawKind::Hysteretic] {
+    for kind in [LawKind::Constant, LawKind::Continuous, LawKind::Hysteretic] {
         let b = pendulum(kind);
         let scheme = Scheme::GeneralizedAlpha {
             step: 1e-3,
@@ -192,8 +194,41 @@ fn newton_iteration(c: &mut Criterion) {
                 .unwrap()
             })
         });
+        // The iteration matrix of the stick/slip laws: the material part, built in the force
+        // pass (slipping wires at a tenth of their stick stiffness, as the hysteretic law's
+        // default), symmetric.
+        let mut km = k.clone();
+        let iteration = Tangent::Iteration { unloading: 0.1 };
+        g.bench_function("forces and iteration matrix", |bch| {
+            bch.iter(|| {
+                b.internal_with(
+                    black_box(&q),
+                    &slip,
+                    &mut trial,
+                    &mut force,
+                    Some((&mut km, iteration)),
+                    None,
+                )
+                .unwrap()
+            })
+        });
         let mut solver = BandSolver::default();
         let beta_p = 1.0 / (0.25 * 1e-6);
+        let mut sm = km.clone();
+        g.bench_function("iteration matrix factorization (LDL^T)", |bch| {
+            bch.iter(|| {
+                sm.fill_zero();
+                sm.add_scaled(1.0, &km);
+                sm.add_scaled(beta_p, b.mass());
+                assert!(solver.factorize(black_box(&sm)));
+                assert!(solver.is_symmetric());
+            })
+        });
+        let qf: Vec<f64> = q[b.free_span().unwrap()].iter().map(|v| v.abs()).collect();
+        let mut kq = vec![0.0; b.dofs()];
+        g.bench_function("round-off of the residual, |K| |q|", |bch| {
+            bch.iter(|| km.abs_mul_vec(black_box(&qf), &mut kq))
+        });
         let mut s = k.clone();
         g.bench_function("iteration matrix and factorization", |bch| {
             bch.iter(|| {
@@ -218,11 +253,51 @@ fn newton_iteration(c: &mut Criterion) {
     }
 }
 
+/// The static solves of the paper's scenes by continuation (`statics.rs`): the section-3
+/// strand under g = 12 (30 elements, Figs. 9-12) and the Table 1 strand under g = 8 (8
+/// elements, Fig. 7), equivalent (`continuous`) and traditional (`constant`) beams.
+fn static_scenes(c: &mut Criterion) {
+    let mut g = c.benchmark_group("static scenes by continuation");
+    g.sample_size(10);
+    for (name, strand, elements, gravity) in [
+        ("section-3 g = 12", section3(1.0), 30, 12.0),
+        (
+            "Table 1 g = 8",
+            Strand::new(StrandSpec::paper(0.4, 2.0e8, 7801.0)).unwrap(),
+            8,
+            8.0,
+        ),
+    ] {
+        for kind in [LawKind::Continuous, LawKind::Constant] {
+            let b = Beam::new(
+                BeamSpec {
+                    elements,
+                    bending_points: None,
+                    mass_per_length: strand.mass_per_length(),
+                    element: ElementKind::Planar,
+                    direction: [1.0, 0.0, 0.0],
+                    gravity: [0.0, -gravity, 0.0],
+                    start: Some(Support::Clamped),
+                    end: None,
+                    ..Default::default()
+                },
+                SectionLaw::new(&strand, kind),
+            )
+            .unwrap();
+            g.bench_function(format!("{name}, {} law", kind.name()), |bch| {
+                bch.iter(|| solve_static(&b, &StaticOptions::default(), &mut |_| {}).unwrap())
+            });
+        }
+    }
+    g.finish();
+}
+
 criterion_group!(
     benches,
     assembly,
     integrators,
     paper_pendulum,
-    newton_iteration
+    newton_iteration,
+    static_scenes
 );
 criterion_main!(benches);

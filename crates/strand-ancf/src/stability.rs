@@ -13,7 +13,7 @@
 use nalgebra::{DMatrix, SymmetricEigen};
 
 use crate::band::{BandMatrix, BandSolver};
-use crate::beam::{Beam, BeamError};
+use crate::beam::{Beam, BeamError, Tangent};
 
 /// Lanczos steps: the largest Ritz value is then converged to about 1e-4 on a 256-element
 /// beam, whose top eigenvalues are spaced about 1/n apart.
@@ -42,12 +42,12 @@ fn largest_eigenvalue(beam: &Beam) -> Result<f64, BeamError> {
     let slip = beam.initial_state();
     let mut trial = slip.clone();
     let mut force = vec![0.0; beam.coords()];
-    beam.internal(
+    beam.internal_with(
         beam.reference(),
         &slip,
         &mut trial,
         &mut force,
-        Some(&mut k),
+        Some((&mut k, Tangent::AllStick)),
         None,
     )?;
     let mut mass = BandSolver::default();

@@ -91,10 +91,7 @@ impl Beam {
             Some((t, kind)) => (Some(t), kind),
             None => (None, Tangent::Exact),
         };
-        let (exact, unloading) = match kind {
-            Tangent::Exact => (true, 0.0),
-            Tangent::Iteration { unloading } => (false, unloading),
-        };
+        let exact = kind == Tangent::Exact;
         force.fill(0.0);
         if let Some(t) = tangent.as_deref_mut() {
             t.fill_zero();
@@ -121,7 +118,7 @@ impl Beam {
                         let k = Some((&mut kp, true));
                         self.element_planar(e, rule, &qe, &means, sl, tr, k, pts)?
                     } else {
-                        let k = want_k.then_some((&mut kp, unloading));
+                        let k = want_k.then_some((&mut kp, kind));
                         let (f, ev) = self.planar_forces(e, rule, &qe, &means, sl, tr, k, pts)?;
                         (f, ev, true)
                     };
@@ -132,7 +129,7 @@ impl Beam {
                 }
                 ElementKind::Spatial => {
                     let qe = self.spatial_coords(q, e);
-                    let k = want_k.then_some((&mut ks, exact));
+                    let k = want_k.then_some((&mut ks, kind));
                     let (f, ev, sym) =
                         self.element_spatial(e, rule, &qe, &means, sl, tr, k, pts)?;
                     for a in 0..12 {
@@ -225,7 +222,7 @@ impl Beam {
             ElementKind::Spatial => {
                 let mut k = SpatialMatrix::zeros();
                 let qe = self.spatial_coords(q, e);
-                let tangent = Some((&mut k, true));
+                let tangent = Some((&mut k, Tangent::Exact));
                 self.element_spatial(e, rule, &qe, m, &slip, &mut trial, tangent, None)?;
                 DMatrix::from_column_slice(12, 12, k.as_slice())
             }

@@ -195,6 +195,10 @@ pub enum Tangent {
         /// Newton from overshooting where that happens.
         unloading: f64,
     },
+    /// The tangent with every wire sticking, whatever its state (and, in space, with the
+    /// planar stick stiffness in both bending directions): at the straight, unstrained
+    /// reference the stiffest the strand can be, for the explicit scheme's stable step.
+    AllStick,
 }
 
 /// Errors of building or evaluating a beam.

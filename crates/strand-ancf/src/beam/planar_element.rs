@@ -6,7 +6,7 @@ use strand_core::PlanarResponse;
 
 use super::{
     AXIAL_POINTS, Beam, BeamError, BendPoint, ElementRule, Evaluation, HOURGLASS, PointState,
-    law_strain, strain_round_off,
+    Tangent, law_strain, strain_round_off,
 };
 use crate::error::check_stretch;
 use crate::planar::{self, PlanarAxial, PlanarCoords, PlanarMatrix, PlanarPoint, PlanarVector};
@@ -174,12 +174,12 @@ impl Beam {
         means: &[f64; 2],
         slip: &[f64],
         trial: &mut [f64],
-        material: Option<(&mut PlanarMatrix, f64)>,
+        material: Option<(&mut PlanarMatrix, Tangent)>,
         mut points: Option<&mut [PointState]>,
     ) -> Result<(PlanarVector, Evaluation), BeamError> {
-        let (mut material, unloading) = match material {
-            Some((m, u)) => (Some(m), u),
-            None => (None, 0.0),
+        let (mut material, kind) = match material {
+            Some((m, kind)) => (Some(m), kind),
+            None => (None, Tangent::Exact),
         };
         if let Some(m) = material.as_deref_mut() {
             m.as_mut_slice().fill(0.0);
@@ -276,7 +276,11 @@ impl Beam {
                     g[2 * k + 1] = row.ds[k] * ka[1] + row.dds[k] * kb[1];
                 }
                 // Without tension the wires have no friction limit and never re-stick.
-                let share = if eps > 0.0 { unloading } else { 0.0 };
+                let share = match kind {
+                    Tangent::AllStick => 1.0,
+                    Tangent::Iteration { unloading } if eps > 0.0 => unloading,
+                    _ => 0.0,
+                };
                 let k = r.moment_curvature + share * (bp.stick - r.moment_curvature).max(0.0);
                 add_outer_lower(m, bp.qp.weight * k, &g);
             }

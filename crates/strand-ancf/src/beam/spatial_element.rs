@@ -5,8 +5,8 @@
 use nalgebra::Matrix6;
 
 use super::{
-    AXIAL_POINTS, Beam, BeamError, ElementRule, Evaluation, HOURGLASS, PointState, law_strain,
-    strain_round_off,
+    AXIAL_POINTS, Beam, BeamError, ElementRule, Evaluation, HOURGLASS, PointState, Tangent,
+    law_strain, strain_round_off,
 };
 use crate::spatial::{
     self, SectionFrame, SpatialCoords, SpatialMatrix, SpatialPoint, SpatialSection, SpatialVector,
@@ -27,15 +27,15 @@ impl Beam {
         means: &[f64; 2],
         state: &[f64],
         trial: &mut [f64],
-        tangent: Option<(&mut SpatialMatrix, bool)>,
+        tangent: Option<(&mut SpatialMatrix, Tangent)>,
         mut points: Option<&mut [PointState]>,
     ) -> Result<(SpatialVector, Evaluation, bool), BeamError> {
-        // `exact`: with the coupling `d M / d eps` and the law's coupling of the two bending
-        // directions (see [`Tangent`]).
-        let (mut tangent, exact) = match tangent {
-            Some((t, exact)) => (Some(t), exact),
-            None => (None, true),
+        let (mut tangent, kind) = match tangent {
+            Some((t, kind)) => (Some(t), kind),
+            None => (None, Tangent::Exact),
         };
+        // With the coupling `d M / d eps` and the law's coupling of the two bending directions.
+        let exact = kind == Tangent::Exact;
         let kin = |source| BeamError::Kinematics { element: e, source };
         let ea = self.law.axial_stiffness();
         let mut f = SpatialVector::zeros();
@@ -111,7 +111,9 @@ impl Beam {
                 kappa = s2.first.kappa;
                 r = self.law.vector(&bp.station, eps, kappa, sl, tr);
                 let mut dm_dkappa = r.moment_curvature;
-                if !exact {
+                if kind == Tangent::AllStick {
+                    dm_dkappa = [[bp.stick, 0.0], [0.0, bp.stick]];
+                } else if !exact {
                     // Without the coupling of the two bending directions through the law
                     // (the friction limits turning with the bending direction): not symmetric,
                     // and zero one way for planar bending, so that a planar scene stays planar.

@@ -411,7 +411,7 @@ fn run_static(
     summary.newton_iterations = sol.iterations;
     if sol.cuts > 0 {
         summary.warnings.push(format!(
-            "{} load steps were cut and retried (Newton did not converge at their size)",
+            "{} continuation steps were cut and retried (Newton did not converge at their size)",
             sol.cuts
         ));
     }
