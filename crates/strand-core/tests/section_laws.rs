@@ -494,7 +494,10 @@ fn hysteretic_unloading_slope_is_all_stick() {
             .count();
         let free = wires
             .iter()
-            .filter(|w| w.m_slip == 0.0 && w.k_stick <= 1e-12 * s.max_bending_stiffness(BaseStiffness::default()))
+            .filter(|w| {
+                w.m_slip == 0.0
+                    && w.k_stick <= 1e-12 * s.max_bending_stiffness(BaseStiffness::default())
+            })
             .count();
         assert_eq!(loaded.slipping, levered + free);
         let dk = 1e-6 * kmax;
