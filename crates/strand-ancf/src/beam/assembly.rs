@@ -200,8 +200,8 @@ impl Beam {
         })
     }
 
-    /// Tangent of element `e` alone at coordinates `q`, from the initial state (no slip; for
-    /// the stable-step bound).
+    /// Tangent of element `e` alone at coordinates `q` from the initial state with every wire
+    /// sticking ([`Tangent::AllStick`], as the stable step reads it; for the stable-step bound).
     #[cfg(test)]
     pub(crate) fn element_tangent(&self, e: usize, q: &[f64]) -> Result<DMatrix<f64>, BeamError> {
         let rule = &self.rules[e];
@@ -215,14 +215,14 @@ impl Beam {
             ElementKind::Planar => {
                 let mut k = PlanarMatrix::zeros();
                 let qe = self.planar_coords(q, e);
-                let tangent = Some((&mut k, true));
-                self.element_planar(e, rule, &qe, m, &slip, &mut trial, tangent, None)?;
+                let tangent = Some((&mut k, Tangent::AllStick));
+                self.planar_forces(e, rule, &qe, m, &slip, &mut trial, tangent, None)?;
                 DMatrix::from_column_slice(8, 8, k.as_slice())
             }
             ElementKind::Spatial => {
                 let mut k = SpatialMatrix::zeros();
                 let qe = self.spatial_coords(q, e);
-                let tangent = Some((&mut k, Tangent::Exact));
+                let tangent = Some((&mut k, Tangent::AllStick));
                 self.element_spatial(e, rule, &qe, m, &slip, &mut trial, tangent, None)?;
                 DMatrix::from_column_slice(12, 12, k.as_slice())
             }
