@@ -27,7 +27,7 @@ use crate::band::{BandMatrix, BandSolver};
 use crate::beam::{Beam, BeamError, Evaluation, PointState, Tangent};
 use crate::corotation::Corotation;
 use crate::initial::InitialState;
-use crate::measure::{displacement, dot, length_scales, within_round_off};
+use crate::measure::{Lengths, dot};
 use crate::moving_support::Drive;
 use crate::statics::{add_free, gather_free};
 
@@ -564,8 +564,8 @@ struct AlphaWork {
     /// The predicted q'' of the step: the algorithmic acceleration takes up the Newton
     /// corrections from there when the step is accepted.
     acc_pred: Vec<f64>,
-    /// Length scale of each free coordinate for [`displacement`].
-    scale: Vec<f64>,
+    /// Length measures of the free coordinates.
+    lengths: Lengths,
     /// Mass of the strand (kg).
     mass: f64,
     /// Largest displacement from the reference configuration so far (m).
@@ -604,13 +604,10 @@ impl AlphaWork {
     /// (their root mean square over the mass) carry it over the run's duration (a strand under
     /// a tiny load moves by tiny amounts, and an absolute tolerance would accept its
     /// predictor). Corrections within the round-off of their coordinates are converged too
-    /// ([`within_round_off`]).
+    /// ([`Lengths::within_round_off`]).
     fn tolerance(&mut self, beam: &Beam, opts: &DynamicOptions, st: &AlphaState) -> f64 {
-        for (g, (x, x0)) in st.q.iter().zip(beam.reference()).enumerate() {
-            if let Some(i) = beam.free_index(g) {
-                self.motion = self.motion.max((x - x0).abs() * self.scale[i]);
-            }
-        }
+        let moved = self.lengths.distance(beam, &st.q, beam.reference());
+        self.motion = self.motion.max(moved);
         let mut rms = |x: &[f64]| {
             beam.vector_mass().mul_vec(x, &mut self.mv);
             (dot(x, &self.mv) / self.mass).max(0.0).sqrt()
@@ -732,7 +729,7 @@ fn alpha_step(
         w.rot.apply(&mut w.dq, true);
         w.solver.solve(&mut w.dq);
         w.rot.apply(&mut w.dq, false);
-        let dn = displacement(&w.dq, &w.scale);
+        let dn = w.lengths.displacement(&w.dq);
         if !dn.is_finite() || dn > beam.length() {
             // Diverged: the step is retried in halves, with a fresh matrix.
             w.factor_h = 0.0;
@@ -774,7 +771,7 @@ fn alpha_step(
         if dn <= tol
             || left <= tol
             || (decrement <= energy_tol && inertial <= energy_tol)
-            || within_round_off(beam, &w.dq, &st.q, &w.scale, tol)
+            || w.lengths.within_round_off(beam, &w.dq, &st.q, tol)
         {
             if linear && !fresh && theta.is_finite() && theta > opts.rebuild_rate {
                 w.stale = true;
@@ -907,7 +904,7 @@ fn generalized_alpha(
         rot: Corotation::new(beam, beam.reference()),
         stale: false,
         acc_pred: zeros.clone(),
-        scale: length_scales(beam),
+        lengths: Lengths::of(beam),
         mass: beam.spec().mass_per_length * beam.length(),
         motion: 0.0,
     };

@@ -39,7 +39,7 @@ use strand_core::LawKind;
 
 use crate::band::{BandMatrix, BandSolver};
 use crate::beam::{Beam, BeamError, PointState};
-use crate::measure::{displacement, length_scales, scaled_dot};
+use crate::measure::Lengths;
 
 /// Newton corrections below this fraction of the tolerance times the strand's motion (its
 /// largest displacement, at most its length; in the displacement they make) are taken in full
@@ -198,8 +198,8 @@ struct Work {
     q_try: Vec<f64>,
     k: BandMatrix,
     solver: BandSolver,
-    /// Length scale of each free coordinate ([`length_scales`]).
-    scale: Vec<f64>,
+    /// Length measures of the free coordinates.
+    lengths: Lengths,
     /// Workspace of [`converged`].
     round_off: [Vec<f64>; 2],
 }
@@ -231,7 +231,7 @@ pub fn solve_static(
         q_try: beam.reference().to_vec(),
         k: BandMatrix::zeros(n, b, b),
         solver: BandSolver::default(),
-        scale: length_scales(beam),
+        lengths: Lengths::of(beam),
         round_off: [vec![0.0; n], vec![0.0; n]],
     };
     let mut g_free = vec![0.0; n];
@@ -278,7 +278,7 @@ pub fn solve_static(
         *d = g + p;
     }
     w.solver.solve(&mut dir_q);
-    let first = displacement(&dir_q, &w.scale);
+    let first = w.lengths.displacement(&dir_q);
     // Step length (m): the first step's load fraction 1 / load_steps, or less so that the
     // strand moves by at most L / load_steps.
     let mut ds = if first > 0.0 && first.is_finite() {
@@ -351,7 +351,7 @@ pub fn solve_static(
                         step_q[i] = w.q_try[g] - x;
                     }
                 }
-                let moved = displacement(&step_q, &w.scale);
+                let moved = w.lengths.displacement(&step_q);
                 if moved > 0.0 && reached != lambda {
                     for (d, x) in dir_q.iter_mut().zip(&step_q) {
                         *d = x / moved;
@@ -546,9 +546,9 @@ fn newton(
         if let Constraint::ArcLength { direction } = constraint {
             w.b.copy_from_slice(g_free);
             w.solver.solve(&mut w.b);
-            let tb = scaled_dot(direction, &w.b, &w.scale);
+            let tb = w.lengths.dot(direction, &w.b);
             if tb != 0.0 && tb.is_finite() {
-                dl = scaled_dot(direction, &w.dq, &w.scale) / tb;
+                dl = w.lengths.dot(direction, &w.dq) / tb;
                 for (d, bi) in w.dq.iter_mut().zip(&w.b) {
                     *d -= dl * bi;
                 }
@@ -565,8 +565,8 @@ fn newton(
                 w.s[i] = x - x0;
             }
         }
-        let motion = displacement(&w.s, &w.scale).min(beam.length());
-        if displacement(&w.dq, &w.scale) <= CORRECTION * opts.tolerance * motion {
+        let motion = w.lengths.displacement(&w.s).min(beam.length());
+        if w.lengths.displacement(&w.dq) <= CORRECTION * opts.tolerance * motion {
             // Newton's correction, its estimate of the distance to the equilibrium, moves no
             // point of the strand by more than the tolerance times the strand's motion: taken
             // in full, the state is converged. Near it the monotonicity test compares
@@ -585,9 +585,9 @@ fn newton(
                 w.s.copy_from_slice(&w.r);
                 w.solver.solve(&mut w.s);
                 if let Constraint::ArcLength { direction } = constraint {
-                    let tb = scaled_dot(direction, &w.b, &w.scale);
+                    let tb = w.lengths.dot(direction, &w.b);
                     if tb != 0.0 && tb.is_finite() {
-                        let dl = scaled_dot(direction, &w.s, &w.scale) / tb;
+                        let dl = w.lengths.dot(direction, &w.s) / tb;
                         for (d, bi) in w.s.iter_mut().zip(&w.b) {
                             *d -= dl * bi;
                         }

@@ -66,8 +66,19 @@ pub use supports::SupportMotion;
 
 /// Round-off of the axial strains of an element with coordinates `q` (`dim` components per
 /// position or slope): `|r'| - 1` from `r' = sum_k S_k' q_k` carries about `eps_mach sum_k
-/// |S_k'| |q_k|`, far more than `eps_mach` where the positions are far from the origin.
+/// |S_k'| |q_k|`, far more than `eps_mach` where the positions are far from the origin. In
+/// space `|q_k|` is the Euclidean length of the position or slope, which a rotation of the
+/// axes leaves unchanged (the strain is read as zero below a multiple of this, so a scene and
+/// its rotation must agree on it); the planar element, whose plane is fixed, sums the
+/// components' magnitudes.
 pub(crate) fn strain_round_off(rule: &ElementRule, q: &[f64], dim: usize) -> f64 {
+    let size = |v: &[f64]| -> f64 {
+        if dim == 3 {
+            v.iter().map(|x| x * x).sum::<f64>().sqrt()
+        } else {
+            v.iter().map(|x| x.abs()).sum::<f64>()
+        }
+    };
     let largest = rule
         .axial
         .iter()
@@ -76,7 +87,7 @@ pub(crate) fn strain_round_off(rule: &ElementRule, q: &[f64], dim: usize) -> f64
                 .ds
                 .iter()
                 .zip(q.chunks_exact(dim))
-                .map(|(d, v)| d.abs() * v.iter().map(|x| x.abs()).sum::<f64>())
+                .map(|(d, v)| d.abs() * size(v))
                 .sum::<f64>()
         })
         .fold(0.0, f64::max);

@@ -21,7 +21,7 @@
 //! between jumps, the work of the reaction `(M q'' + Q_e - Q)_p` on the held coordinates'
 //! displacement (trapezoidal rule over each step).
 
-use super::{Beam, BeamError, BeamSpec, ElementKind, Support};
+use super::{Beam, BeamError, BeamSpec, Support};
 
 /// Free-coordinate index of every global coordinate (`None` where a support holds it) and the
 /// number of free coordinates, for `nd` coordinates per node: a pinned end holds its position,
@@ -188,21 +188,6 @@ impl SupportMotion {
 }
 
 impl Beam {
-    /// Size of a correction `dq` of the free coordinates: its largest component for the planar
-    /// element; for the spatial element the largest Euclidean length of a node's position or
-    /// slope change, which a rotation of the axes leaves unchanged, so a solver that stops on
-    /// it takes the same decisions for a scene and its rotation. (Supports hold whole position
-    /// or slope vectors, so the free coordinates are a sequence of whole 3-vectors.)
-    pub fn correction_size(&self, dq: &[f64]) -> f64 {
-        match self.spec.element {
-            ElementKind::Planar => dq.iter().fold(0.0f64, |a, x| a.max(x.abs())),
-            ElementKind::Spatial => dq
-                .chunks_exact(3)
-                .map(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt())
-                .fold(0.0f64, f64::max),
-        }
-    }
-
     /// Whether a support moves.
     pub fn has_moving_supports(&self) -> bool {
         !self.moving.is_empty()
