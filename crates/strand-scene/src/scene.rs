@@ -6,7 +6,9 @@
 
 use std::path::Path;
 
-use strand_ancf::beam::{MAX_BENDING_POINTS, pitch_rule_points};
+use strand_ancf::beam::{
+    ElementKind, MAX_BENDING_POINTS, pitch_rule_points, points_per_quarter_pitch,
+};
 use strand_core::{
     BaseStiffness, DEFAULT_FRICTION, InputError, LawKind, LayDirection, LayerSpec, Material,
     SectionOptions, StickStiffness, Strand, StrandSpec, WireSpec,
@@ -390,7 +392,17 @@ impl Scene {
                 "a static analysis needs at least one support",
             ));
         }
-        let models = models(&file, &strand)?;
+        let element = Motion {
+            direction,
+            gravity,
+            velocity,
+            angular_velocity,
+            phase_reference,
+            point_forces: &point_forces,
+            supports: &supports,
+        }
+        .element();
+        let models = models(&file, &strand, element)?;
         if models.fine.is_some()
             && matches!(analysis, Analysis::Static { .. })
             && supports.iter().any(|s| s.motion.is_some())
@@ -426,19 +438,22 @@ impl Scene {
     /// component, the initial rotation is about Z, and the wire phases are measured from +Z
     /// (the planar element's convention).
     pub fn is_planar(&self) -> bool {
-        let w = self.angular_velocity;
-        self.direction[2] == 0.0
-            && self.gravity[2] == 0.0
-            && self.velocity[2] == 0.0
-            && w[0] == 0.0
-            && w[1] == 0.0
-            && self.phase_reference == [0.0, 0.0, 1.0]
-            && self.point_forces.iter().all(|p| p.force[2] == 0.0)
-            && self
-                .supports
-                .iter()
-                .flat_map(|s| s.motion.iter().flatten())
-                .all(|r| r[3] == 0.0)
+        self.element() == ElementKind::Planar
+    }
+
+    /// The element the beams of this scene are built with: planar if the scene stays in the
+    /// XY plane ([`Scene::is_planar`]), else spatial.
+    pub fn element(&self) -> ElementKind {
+        Motion {
+            direction: self.direction,
+            gravity: self.gravity,
+            velocity: self.velocity,
+            angular_velocity: self.angular_velocity,
+            phase_reference: self.phase_reference,
+            point_forces: &self.point_forces,
+            supports: &self.supports,
+        }
+        .element()
     }
 
     /// Whether the strand starts moving: a non-zero initial velocity or angular velocity.
@@ -792,11 +807,46 @@ fn gib(bytes: f64) -> f64 {
     bytes / (1u64 << 30) as f64
 }
 
+/// The vectors of a scene that decide whether it stays in the XY plane.
+struct Motion<'a> {
+    direction: [f64; 3],
+    gravity: [f64; 3],
+    velocity: [f64; 3],
+    angular_velocity: [f64; 3],
+    phase_reference: [f64; 3],
+    point_forces: &'a [PointForce],
+    supports: &'a [Support],
+}
+
+impl Motion<'_> {
+    fn element(&self) -> ElementKind {
+        let w = self.angular_velocity;
+        let planar = self.direction[2] == 0.0
+            && self.gravity[2] == 0.0
+            && self.velocity[2] == 0.0
+            && w[0] == 0.0
+            && w[1] == 0.0
+            && self.phase_reference == [0.0, 0.0, 1.0]
+            && self.point_forces.iter().all(|p| p.force[2] == 0.0)
+            && self
+                .supports
+                .iter()
+                .flat_map(|s| s.motion.iter().flatten())
+                .all(|r| r[3] == 0.0);
+        if planar {
+            ElementKind::Planar
+        } else {
+            ElementKind::Spatial
+        }
+    }
+}
+
 fn beam(
     path: &str,
     m: &BeamModelFile,
     strand: &Strand,
     traditional: bool,
+    element: ElementKind,
 ) -> Result<BeamModel, SceneError> {
     let field = format!("{path}.elements");
     let elements = count(&field, m.elements, 1, i64::MAX)?;
@@ -809,7 +859,7 @@ fn beam(
     // laws (the traditional beam has no wires: 4 points), as `strand_ancf::beam` builds them.
     let per_element = match (integration_points, strand.layer()) {
         (Some(n), _) => n as f64,
-        (None, Some(layer)) if !traditional => pitch_rule_points(l, layer.pitch),
+        (None, Some(layer)) if !traditional => pitch_rule_points(l, layer.pitch, element),
         _ => 4.0,
     };
     if integration_points.is_none() && per_element > MAX_BENDING_POINTS as f64 {
@@ -818,9 +868,10 @@ fn beam(
             field,
             format!(
                 "{elements} element(s) of {l:.4e} m each span {:.4e} wire pitches (P = {pitch:.4e} \
-                 m); the pitch rule puts one bending point on every quarter pitch, {per_element:.4e} \
+                 m); the pitch rule puts {} bending point(s) on every quarter pitch, {per_element:.4e} \
                  per element, above the cap of {MAX_BENDING_POINTS}: use at least {:.0} elements",
                 l / pitch,
+                points_per_quarter_pitch(element),
                 (elements as f64 * per_element / MAX_BENDING_POINTS as f64).ceil()
             ),
         ));
@@ -890,7 +941,7 @@ fn fine(m: &FineModelFile, strand: &Strand) -> Result<FineModel, SceneError> {
     })
 }
 
-fn models(file: &SceneFile, strand: &Strand) -> Result<Models, SceneError> {
+fn models(file: &SceneFile, strand: &Strand, element: ElementKind) -> Result<Models, SceneError> {
     let m = &file.models;
     if m.equivalent.is_none() && m.traditional.is_none() && m.fine.is_none() {
         return Err(SceneError::new(
@@ -902,12 +953,12 @@ fn models(file: &SceneFile, strand: &Strand) -> Result<Models, SceneError> {
         equivalent: m
             .equivalent
             .as_ref()
-            .map(|b| beam("models.equivalent", b, strand, false))
+            .map(|b| beam("models.equivalent", b, strand, false, element))
             .transpose()?,
         traditional: m
             .traditional
             .as_ref()
-            .map(|b| beam("models.traditional", b, strand, true))
+            .map(|b| beam("models.traditional", b, strand, true, element))
             .transpose()?,
         fine: m.fine.as_ref().map(|f| fine(f, strand)).transpose()?,
     })

@@ -201,8 +201,9 @@ fn a_model_that_cannot_be_built_fails_alone() {
         "{:?}",
         s[0].error
     );
-    // The same failure first in a scene with the other two models.
-    scene.models.equivalent.as_mut().unwrap().integration_points = Some(11);
+    // A setup failure (zero bending points, edited in after validation) first in a scene with
+    // the other two models.
+    scene.models.equivalent.as_mut().unwrap().integration_points = Some(0);
     let (s, out) = run_parsed(&scene, "setup");
     assert_eq!(s.len(), 3);
     assert_eq!(s[0].reason, Some(Failure::Setup), "{:?}", s[0]);

@@ -60,7 +60,7 @@ use crate::spatial::{SectionFrame, SpatialCoords, default_phase_reference};
 
 pub use loads::PointLoad;
 pub(crate) use quadrature::{BendPoint, ElementRule};
-pub use quadrature::{MAX_BENDING_POINTS, pitch_rule_points};
+pub use quadrature::{MAX_BENDING_POINTS, pitch_rule_points, points_per_quarter_pitch};
 pub use sampling::SectionSample;
 pub use supports::SupportMotion;
 
@@ -137,7 +137,8 @@ pub enum Support {
 pub struct BeamSpec {
     /// Number of elements.
     pub elements: usize,
-    /// Gauss points per element for the bending term; `None` for the pitch rule.
+    /// Bending points per element (one Gauss rule, or equal Gauss rules on equal parts of the
+    /// element beyond [`crate::shape::MAX_GAUSS_POINTS`]); `None` for the pitch rule.
     pub bending_points: Option<usize>,
     /// Mass per length (kg/m).
     pub mass_per_length: f64,
