@@ -157,6 +157,9 @@ pub struct Energy {
     pub total: Vec<f64>,
     /// Work of moving supports on the strand (J; zero where the file has no `support_work`).
     pub supports: Vec<f64>,
+    /// Work the section law's non-potential part did on the strand (J; zero where the file
+    /// has no `non_potential`, as for the fine model, whose wires have no section law).
+    pub non_potential: Vec<f64>,
 }
 
 impl Energy {
@@ -172,6 +175,9 @@ impl Energy {
             total: t.column("total")?,
             supports: t
                 .column("support_work")
+                .unwrap_or_else(|_| vec![0.0; t.rows.len()]),
+            non_potential: t
+                .column("non_potential")
                 .unwrap_or_else(|_| vec![0.0; t.rows.len()]),
         };
         if e.t.is_empty() {
@@ -233,6 +239,7 @@ mod tests {
             dissipated: vec![0.0; 3],
             total: vec![0.0, 0.1, -0.2],
             supports: vec![0.0; 3],
+            non_potential: vec![0.0; 3],
         };
         assert!((e.balance_relative() - 0.1).abs() < 1e-15);
     }
