@@ -1240,8 +1240,9 @@ fn scene_rho(scene: &Scene) -> f64 {
 /// generalized-alpha: the spatial beam against the planar beam's run in the XY plane turned
 /// into the tilted plane. The planar run at half the step gives the integrator's own error,
 /// the scale the two element kinds' difference is judged against, and the order at which the
-/// planar run's energy balance closes (the trapezoidal rule's O(h^2): the ledger books the
-/// slip work exactly, so what is left is the integrator's). The spatial run's distance from
+/// planar run's energy balance closes (the trapezoidal rule's O(h^2): the ledger books each
+/// slider's slip work from its own slip, at the friction limit of the step's end, so what is
+/// left is the integrator's). The spatial run's distance from
 /// the plane of motion, where the planar run is an exact solution of its equations, is
 /// reported with the work of the law's non-potential part.
 pub fn tilted_pendulum(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
