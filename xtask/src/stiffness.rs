@@ -21,6 +21,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::Context;
+use strand_core::convergence::Richardson;
 use strand_core::{BaseStiffness, SectionOptions, Strand, StrandSpec};
 use strand_fine::BendingTest;
 use strand_scene::format::{BeamModelFile, FineModelFile, ModelsFile, SectionFile};
@@ -256,11 +257,11 @@ fn cantilever(scene: &Scene, out: &std::path::Path) -> anyhow::Result<Vec<Row>> 
         distance(&fine[0].1, &fine[1].1),
         distance(&fine[1].1, &fine[2].1),
     );
-    let order = (d1 / d2).log2().clamp(1.0, 4.0);
-    let estimate = d2 / (2f64.powf(order) - 1.0);
+    let richardson = Richardson::new(d1, d2, 2.0, 1.0, 4.0);
+    let (order, estimate) = (richardson.order, richardson.finest_error);
     let middle = fine[fine.len() - 2].1;
-    let converged: [f64; 3] =
-        std::array::from_fn(|i| finest[i] + (finest[i] - middle[i]) / (2f64.powf(order) - 1.0));
+    let limit = richardson.limit(&middle, &finest);
+    let converged = [limit[0], limit[1], limit[2]];
     let mut row = Row::measured(
         name,
         "fine-error",
@@ -272,10 +273,7 @@ fn cantilever(scene: &Scene, out: &std::path::Path) -> anyhow::Result<Vec<Row>> 
     .with_note(format!(
         "differences {d1:.3e}, {d2:.3e} m between the meshes (order {:.2}, used {order:.2}); \
          extrapolated tip ({:.6}, {:.6}, {:.6}) m",
-        (d1 / d2).log2(),
-        converged[0],
-        converged[1],
-        converged[2]
+        richardson.observed_order, converged[0], converged[1], converged[2]
     ));
     row.why = "the fine model's own error at its finest mesh (Richardson), half of the 1e-3 L \
                claim"

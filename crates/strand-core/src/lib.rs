@@ -9,6 +9,7 @@
 //! characteristics", Chinese J. Theor. Appl. Mech. 50(2):373-384.
 
 pub mod bonded;
+pub mod convergence;
 pub mod error;
 pub mod geometry;
 pub mod section;

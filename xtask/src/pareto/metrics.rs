@@ -1,6 +1,6 @@
 //! Error metrics and the Pareto front: tip trajectories compared at the run's own output
 //! times (the reference interpolated by cubic Hermite on its positions and velocities), the
-//! median of repeated timings, the non-dominated set, and the speed-up at equal error.
+//! median of repeated timings, and the non-dominated set.
 
 use std::path::Path;
 
@@ -128,13 +128,6 @@ pub fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
     front
 }
 
-/// The cheapest of `candidates` (time, error) whose error is at most `error`: its index.
-pub fn cheapest_within(candidates: &[(f64, f64)], error: f64) -> Option<usize> {
-    (0..candidates.len())
-        .filter(|&i| candidates[i].1 <= error && candidates[i].0.is_finite())
-        .min_by(|&a, &b| candidates[a].0.total_cmp(&candidates[b].0))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -159,14 +152,6 @@ mod tests {
         ];
         assert_eq!(pareto_front(&p), [4, 0, 1, 5]);
         assert!(pareto_front(&[]).is_empty());
-    }
-
-    #[test]
-    fn cheapest_within_an_error() {
-        let p = [(1.0, 1.0), (2.0, 0.5), (0.5, 0.6), (3.0, 0.1)];
-        assert_eq!(cheapest_within(&p, 0.6), Some(2));
-        assert_eq!(cheapest_within(&p, 0.2), Some(3));
-        assert_eq!(cheapest_within(&p, 0.01), None);
     }
 
     /// Hermite interpolation is exact for a cubic trajectory with exact velocities.

@@ -1,45 +1,51 @@
-//! `cargo xtask pareto`: speed against error. A static and a dynamic scene, each run with the
-//! equivalent model over element counts (and, in dynamics, integrators and time steps), the
-//! traditional model and the fine model over segment counts; error against a converged
-//! reference, median wall time of repeated runs, degrees of freedom; a table, a log-log plot
-//! with the Pareto front, and the speed-up of the equivalent over the fine model at equal distance
-//! to the reference (for the fine model mostly its modelling difference, not its error).
+//! `cargo xtask pareto`: speed against error that means it. A static and a dynamic scene,
+//! each run with the fine model refined in segments per wire (doubling), the equivalent model
+//! refined in elements (and, in dynamics, time step) and the traditional model. Each run's
+//! error is measured twice: against the converged fine model (the physics), and against its own
+//! converged discretisation; a converged solution is the Richardson extrapolation of a
+//! model's three finest runs (`strand_core::convergence`), shown with its estimated error.
+//! The headline: the CPU time the equivalent model needs to come within a distance X of the
+//! converged fine model, against the CPU time the fine model needs to come within the same X
+//! of itself, with X stated and chosen above the equivalent's converged modelling difference.
 //!
-//! References: statics, the elastica shooting solution with the scene's section law
-//! (independent of every discretisation; SPEC 7); dynamics, the equivalent model with
-//! [`REFERENCE_ELEMENTS`] elements and Stoermer-Verlet at its stable step (no independent
-//! solution exists), whose own error is estimated by the run at half as many elements.
+//! Scenes: statics, `vs-fine-12deg-friction` (a strand that is not the paper's, with friction,
+//! 1.4 pitches long: the fine model converges in seconds to minutes per run); dynamics,
+//! `paper-fig8-clamped` (the paper's pendulum, 0.5 s) with Costello's K_min, the default law.
 
 pub mod metrics;
+pub mod reference;
 mod report;
 
 use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::Context;
-use indicatif::ProgressBar;
-use strand_elastica::Solution;
 use strand_scene::format::{BeamModelFile, FineModelFile, ModelsFile};
 use strand_scene::{Analysis, Scene};
 
 use crate::paper::{copy_to_docs, load_scene, run_into};
-use crate::validate::checks::{self, BeamKind};
 use crate::validate::machine::Provenance;
-use crate::validate::report::worst;
-use crate::validate::results::Centerline;
-use crate::validate::{progress_bar, repo_root};
-use metrics::{Tip, median};
+use crate::validate::{progress_bar, repo_root, with_base_stiffness};
+use metrics::median;
+use reference::{Converged, Grid, Sampled};
 use report::{CaseReport, ParetoReport};
 
 /// A run longer than this (s) is timed once.
-pub const LONG_RUN_S: f64 = 30.0;
+pub const LONG_RUN_S: f64 = 10.0;
 
 fn s_wall(s: &Option<strand_scene::RunSummary>) -> f64 {
     s.as_ref().map_or(0.0, |s| s.wall_time_s)
 }
 
-/// Elements of the dynamic reference run.
-pub const REFERENCE_ELEMENTS: usize = 128;
+/// The static scene.
+pub const STATIC_SCENE: &str = "vs-fine-12deg-friction";
+/// The dynamic scene (run with Costello's K_min, the default; the file names the paper's).
+pub const DYNAMIC_SCENE: &str = "paper-fig8-clamped";
+/// Segments per pitch of the coarsest fine run, and the number of runs (each doubling), of
+/// the static and the dynamic scene.
+pub const FINE_LEVELS: [(f64, usize); 2] = [(5.0, 4), (2.5, 4)];
+/// Stations along the strand of the static grid.
+const STATIONS: usize = 400;
 
 /// Options of `cargo xtask pareto`.
 #[derive(Debug, Clone, clap::Args)]
@@ -53,9 +59,13 @@ pub struct ParetoArgs {
     /// Folder of the table, the plots and the runs [default: target/pareto].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-    /// Segments per wire of the fine-model runs.
-    #[arg(long, value_name = "N,N,...", value_delimiter = ',', default_values_t = [20, 40, 77])]
-    pub fine_segments: Vec<usize>,
+    /// The distance X (m) of the static headline [default: the smallest of 1, 2, 5 x 10^k
+    /// at least twice the converged models' distance plus the fine reference's error].
+    #[arg(long, value_name = "M")]
+    pub target_static: Option<f64>,
+    /// The distance X (m) of the dynamic headline [default: as for statics].
+    #[arg(long, value_name = "M")]
+    pub target_dynamic: Option<f64>,
     /// Also copy the plots the README shows into docs/.
     #[arg(long)]
     pub update_docs: bool,
@@ -67,7 +77,8 @@ impl Default for ParetoArgs {
             repeats: 3,
             quick: false,
             out: None,
-            fine_segments: vec![20, 40, 77],
+            target_static: None,
+            target_dynamic: None,
             update_docs: false,
         }
     }
@@ -184,13 +195,10 @@ impl Config {
     }
 }
 
-/// The configurations of a scene.
+/// The configurations of a scene: the fine model at `fine_sizes` segments per wire, the
+/// equivalent model over elements (dynamics: generalized-alpha refined in elements and time
+/// step together, Stoermer-Verlet at its stable step over elements), the traditional model.
 fn plan(scene: &Scene, quick: bool, fine_sizes: &[usize]) -> Vec<Config> {
-    let fine_sizes = if quick {
-        &fine_sizes[..1.min(fine_sizes.len())]
-    } else {
-        fine_sizes
-    };
     let beam = |model, size, integrator: Option<&str>, time_step| Config {
         model,
         size,
@@ -201,14 +209,14 @@ fn plan(scene: &Scene, quick: bool, fine_sizes: &[usize]) -> Vec<Config> {
     match scene.analysis {
         Analysis::Static { .. } => {
             let els: &[usize] = if quick {
-                &[4, 8]
+                &[4, 8, 16]
             } else {
-                &[4, 6, 8, 12, 16, 24, 32, 48, 64]
+                &[2, 4, 8, 16, 32, 64]
             };
             for &n in els {
                 out.push(beam(Model::Equivalent, n, None, None));
             }
-            for &n in if quick { &[8][..] } else { &[8, 16, 32] } {
+            for n in [8, 16, 32] {
                 out.push(beam(Model::Traditional, n, None, None));
             }
             for &n in fine_sizes {
@@ -216,51 +224,49 @@ fn plan(scene: &Scene, quick: bool, fine_sizes: &[usize]) -> Vec<Config> {
             }
         }
         Analysis::Dynamic(_) => {
-            let els: &[usize] = if quick { &[8] } else { &[4, 8, 16, 32] };
-            let steps: &[f64] = if quick {
-                &[1e-3]
+            let ga: &[(usize, f64)] = if quick {
+                &[(4, 2e-3), (8, 1e-3), (16, 5e-4)]
             } else {
-                &[2e-3, 1e-3, 5e-4, 2.5e-4]
+                &[
+                    (4, 2e-3),
+                    (8, 1e-3),
+                    (16, 5e-4),
+                    (32, 2.5e-4),
+                    (64, 1.25e-4),
+                ]
             };
-            for &n in els {
-                out.push(beam(Model::Equivalent, n, Some("verlet"), None));
-                for &h in steps {
-                    out.push(beam(
-                        Model::Equivalent,
-                        n,
-                        Some("generalized-alpha"),
-                        Some(h),
-                    ));
-                }
+            for &(n, h) in ga {
+                out.push(beam(
+                    Model::Equivalent,
+                    n,
+                    Some("generalized-alpha"),
+                    Some(h),
+                ));
             }
-            for &n in if quick { &[8][..] } else { &[8, 16, 32] } {
+            for &n in if quick { &[8][..] } else { &[4, 8, 16, 32] } {
+                out.push(beam(Model::Equivalent, n, Some("verlet"), None));
+            }
+            for n in [8, 16, 32] {
                 out.push(beam(Model::Traditional, n, Some("verlet"), None));
             }
-            let integrator = match scene.analysis {
-                Analysis::Dynamic(d) => match d.integrator {
-                    strand_scene::IntegratorKind::Verlet => "verlet",
-                    strand_scene::IntegratorKind::GeneralizedAlpha => "generalized-alpha",
-                },
-                Analysis::Static { .. } => unreachable!(),
-            };
-            let h = match scene.analysis {
-                Analysis::Dynamic(d) => d.time_step,
-                Analysis::Static { .. } => None,
-            };
             for &n in fine_sizes {
-                out.push(beam(Model::Fine, n, Some(integrator), h));
+                // The fine model integrates explicitly at its own stable step.
+                out.push(beam(Model::Fine, n, None, None));
             }
         }
     }
     out
 }
 
-/// The reference a scene's errors are measured against.
-enum Reference {
-    /// Statics: the elastica.
-    Elastica(Box<Solution>),
-    /// Dynamics: the tip trajectory of a converged run.
-    Tip(Tip),
+/// Segments per wire of the fine runs: `per_pitch` segments per pitch rounded, doubled
+/// `levels - 1` times.
+pub fn fine_sizes(scene: &Scene, per_pitch: f64, levels: usize) -> Vec<usize> {
+    let pitches = scene
+        .strand
+        .layer()
+        .map_or(1.0, |l| scene.strand.length() / l.pitch);
+    let first = (per_pitch * pitches).round().max(2.0) as usize;
+    (0..levels).map(|k| first << k).collect()
 }
 
 /// One timed configuration.
@@ -274,6 +280,8 @@ pub struct Point {
     pub family: String,
     /// Elements or segments per wire.
     pub size: usize,
+    /// Time step (s; dynamics of the beams with a fixed step).
+    pub time_step: Option<f64>,
     /// Degrees of freedom.
     pub dofs: usize,
     /// Load steps or time steps.
@@ -282,12 +290,34 @@ pub struct Point {
     pub wall_times_s: Vec<f64>,
     /// Their median (s).
     pub wall_time_s: f64,
-    /// Error against the reference (m); NaN when the run failed.
-    pub error_m: f64,
-    /// Whether the point is on the Pareto front.
+    /// CPU times of the solve (process, all threads), one per repeat (s).
+    pub cpu_times_s: Vec<f64>,
+    /// Their median (s).
+    pub cpu_time_s: f64,
+    /// Largest distance to the converged fine model (m); NaN when not available.
+    pub error_fine_m: f64,
+    /// Largest distance to the model's own converged discretisation (m); NaN when not
+    /// available.
+    pub error_own_m: f64,
+    /// Whether the point is on the Pareto front of CPU time against `error_fine_m`.
     pub on_front: bool,
     /// Why the point has no error, if so.
     pub note: String,
+}
+
+/// A converged solution of one model, for the report.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Limit {
+    /// `fine`, `equivalent` or `traditional`.
+    pub model: String,
+    /// Where it comes from and its estimated error.
+    pub description: String,
+    /// Observed order of the extrapolation.
+    pub observed_order: f64,
+    /// Estimated error of the finest run (m).
+    pub finest_error_m: f64,
+    /// Largest distance to the converged fine model (m): the modelling difference.
+    pub distance_to_fine_m: f64,
 }
 
 /// Runs the comparison, writes the report and prints the headlines and the report's path.
@@ -302,34 +332,35 @@ pub fn run(args: &ParetoArgs) -> anyhow::Result<()> {
     let provenance = Provenance::detect(&root);
     let repeats = if args.quick { 1 } else { args.repeats.max(1) };
     let scenes = [
-        load_scene("paper-fig7-g8")?,
-        load_scene("paper-fig8-clamped")?,
+        load_scene(STATIC_SCENE)?,
+        with_base_stiffness(&load_scene(DYNAMIC_SCENE)?, "costello")?,
     ];
+    let targets = [args.target_static, args.target_dynamic];
     let plans: Vec<Vec<Config>> = scenes
         .iter()
-        .map(|s| plan(s, args.quick, &args.fine_segments))
+        .zip(FINE_LEVELS)
+        .map(|(s, (per_pitch, levels))| {
+            let levels = if args.quick { 3 } else { levels };
+            plan(s, args.quick, &fine_sizes(s, per_pitch, levels))
+        })
         .collect();
-    let total: usize = plans.iter().map(|p| p.len() * repeats + 2).sum();
+    let total: usize = plans.iter().map(|p| p.len() * repeats).sum();
     let bar = progress_bar(total);
     let mut tick = 0u64;
     let mut cases = Vec::new();
-    for (scene, plan) in scenes.iter().zip(&plans) {
+    for ((scene, plan), target) in scenes.iter().zip(&plans).zip(targets) {
         let dir = out.join("runs").join(&scene.name);
-        bar.set_message(format!("{} reference", scene.name));
-        let (reference, reference_note) = reference(scene, &dir, &bar, &mut tick, args.quick)?;
+        let grid = match scene.analysis {
+            Analysis::Static { .. } => Grid::stations(scene.strand.length(), STATIONS),
+            Analysis::Dynamic(d) => Grid::times(d.duration, d.output_interval),
+        };
         let mut points = Vec::new();
-        let mut fine_missing: Option<String> = None;
+        let mut results: Vec<Option<Sampled>> = Vec::new();
         for c in plan {
-            if c.model == Model::Fine
-                && let Some(why) = &fine_missing
-            {
-                points.push(unavailable(c, why));
-                tick += repeats as u64;
-                continue;
-            }
             let cfg_scene = c.scene(scene, None)?;
             let run_dir = dir.join(c.label().replace([' ', ',', '=', '/'], "_"));
             let mut times = Vec::new();
+            let mut cpu = Vec::new();
             let mut last = None;
             let mut failure = None;
             for r in 0..repeats {
@@ -340,6 +371,7 @@ pub fn run(args: &ParetoArgs) -> anyhow::Result<()> {
                 match o.as_ref().and_then(|o| o.ok()) {
                     Some(s) => {
                         times.push(s.wall_time_s);
+                        cpu.push(s.cpu_time_s.unwrap_or(f64::NAN));
                         last = Some(s.clone());
                     }
                     None => {
@@ -359,21 +391,18 @@ pub fn run(args: &ParetoArgs) -> anyhow::Result<()> {
             }
             let Some(summary) = last else {
                 let why = format!("failed: {}", failure.unwrap_or_default());
-                if c.model == Model::Fine {
-                    fine_missing = Some(format!(
-                        "not available: not attempted after the {} run failed",
-                        c.label()
-                    ));
-                }
                 points.push(unavailable(c, &why));
+                results.push(None);
                 continue;
             };
-            let model_dir = run_dir.join(c.model.name());
-            let (error, mut note) =
-                match measure(&reference, &model_dir, summary.tip.unwrap_or([f64::NAN; 3])) {
-                    Ok(e) => (e, String::new()),
-                    Err(e) => (f64::NAN, format!("{e:#}")),
-                };
+            let mut note = String::new();
+            match Sampled::load(&grid, &run_dir.join(c.model.name())) {
+                Ok(r) => results.push(Some(r)),
+                Err(e) => {
+                    note = format!("{e:#}");
+                    results.push(None);
+                }
+            }
             if times.len() < repeats {
                 note = format!("timed once (longer than {LONG_RUN_S} s) {note}");
             }
@@ -382,29 +411,35 @@ pub fn run(args: &ParetoArgs) -> anyhow::Result<()> {
                 label: c.label(),
                 family: c.family(),
                 size: c.size,
+                time_step: c.time_step,
                 dofs: summary.dofs,
                 steps: summary.steps,
                 wall_time_s: median(&times),
                 wall_times_s: times,
-                error_m: error,
+                cpu_time_s: median(&cpu),
+                cpu_times_s: cpu,
+                error_fine_m: f64::NAN,
+                error_own_m: f64::NAN,
                 on_front: false,
                 note,
             });
         }
+        let limits = measure(&grid, plan, &mut points, &results);
         let front = metrics::pareto_front(
             &points
                 .iter()
-                .map(|p| (p.wall_time_s, p.error_m))
+                .map(|p| (p.cpu_time_s, p.error_fine_m))
                 .collect::<Vec<_>>(),
         );
         for i in front {
             points[i].on_front = true;
         }
-        cases.push(CaseReport::new(scene, reference_note, points));
+        cases.push(CaseReport::new(scene, &grid, points, limits, target));
     }
     bar.finish_and_clear();
     let report = ParetoReport {
         provenance,
+        load_average: load_average(),
         repeats,
         quick: args.quick,
         wall_time_s: t0.elapsed().as_secs_f64(),
@@ -419,92 +454,117 @@ pub fn run(args: &ParetoArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The load averages over 1, 5 and 15 minutes (`/proc/loadavg`), if readable.
+fn load_average() -> Option<[f64; 3]> {
+    let s = std::fs::read_to_string("/proc/loadavg").ok()?;
+    let v: Vec<f64> = s
+        .split_whitespace()
+        .take(3)
+        .filter_map(|w| w.parse().ok())
+        .collect();
+    (v.len() == 3).then(|| [v[0], v[1], v[2]])
+}
+
+/// The indices of the sequence of `model` (and, for the equivalent in dynamics, the
+/// generalized-alpha family that refines elements and step together) that ran, in plan order.
+fn sequence(plan: &[Config], model: Model) -> Vec<usize> {
+    (0..plan.len())
+        .filter(|&i| {
+            plan[i].model == model
+                && (model != Model::Equivalent || plan[i].integrator.as_deref() != Some("verlet"))
+        })
+        .collect()
+}
+
+/// The converged solution of each model from its three finest runs (refined by 2 each), and
+/// every run's two errors.
+fn measure(
+    grid: &Grid,
+    plan: &[Config],
+    points: &mut [Point],
+    results: &[Option<Sampled>],
+) -> Vec<Limit> {
+    let mut limits = Vec::new();
+    let mut converged: Vec<(Model, Converged)> = Vec::new();
+    for model in [Model::Fine, Model::Equivalent, Model::Traditional] {
+        let seq = sequence(plan, model);
+        if seq.len() < 3 {
+            continue;
+        }
+        let last = &seq[seq.len() - 3..];
+        let runs: Vec<(&str, &Sampled)> = last
+            .iter()
+            .filter_map(|&i| results[i].as_ref().map(|r| (points[i].label.as_str(), r)))
+            .collect();
+        if runs.len() < 3 {
+            for &i in &seq {
+                points[i].note += &format!(
+                    " no converged {} solution: one of its three finest runs failed",
+                    model.name()
+                );
+            }
+            continue;
+        }
+        let ratio = plan[last[2]].size as f64 / plan[last[1]].size as f64;
+        let c = Converged::new([runs[0], runs[1], runs[2]], ratio);
+        converged.push((model, c));
+    }
+    let fine = converged
+        .iter()
+        .find(|c| c.0 == Model::Fine)
+        .map(|c| c.1.clone());
+    for (model, c) in &converged {
+        for i in 0..points.len() {
+            if points[i].model != *model {
+                continue;
+            }
+            if let Some(r) = &results[i] {
+                points[i].error_own_m = c.distance(grid, r);
+                if let Some(f) = &fine {
+                    points[i].error_fine_m = f.distance(grid, r);
+                }
+            }
+        }
+        limits.push(Limit {
+            model: model.name().into(),
+            description: c.describe(),
+            observed_order: c.richardson.observed_order,
+            finest_error_m: c.richardson.finest_error,
+            distance_to_fine_m: fine
+                .as_ref()
+                .map_or(f64::NAN, |f| reference::max_distance(&c.grid, &f.grid)),
+        });
+    }
+    // A run whose model has no converged solution is still measured against the fine one.
+    if let Some(f) = &fine {
+        for i in 0..points.len() {
+            if points[i].error_fine_m.is_nan()
+                && let Some(r) = &results[i]
+            {
+                points[i].error_fine_m = f.distance(grid, r);
+            }
+        }
+    }
+    limits
+}
+
 fn unavailable(c: &Config, why: &str) -> Point {
     Point {
         model: c.model,
         label: c.label(),
         family: c.family(),
         size: c.size,
+        time_step: c.time_step,
         dofs: 0,
         steps: 0,
         wall_times_s: Vec::new(),
         wall_time_s: f64::NAN,
-        error_m: f64::NAN,
+        cpu_times_s: Vec::new(),
+        cpu_time_s: f64::NAN,
+        error_fine_m: f64::NAN,
+        error_own_m: f64::NAN,
         on_front: false,
         note: why.to_string(),
-    }
-}
-
-/// The reference of `scene` and a sentence on what it is and how good it is.
-fn reference(
-    scene: &Scene,
-    dir: &std::path::Path,
-    bar: &ProgressBar,
-    tick: &mut u64,
-    quick: bool,
-) -> anyhow::Result<(Reference, String)> {
-    match scene.analysis {
-        Analysis::Static { .. } => {
-            let r = checks::elastica(scene, BeamKind::Equivalent)
-                .map_err(|e| anyhow::anyhow!("{}: elastica reference: {e}", scene.name))?;
-            *tick += 2;
-            let note = format!(
-                "the elastica shooting solution with the scene's section law (SPEC 7; \
-                 independent of every discretisation, its own position error estimate {:.1e} \
-                 m), which the equivalent beam converges to as elements are added; the \
-                 traditional and fine models differ from it by their modelling as well",
-                r.error.position
-            );
-            Ok((Reference::Elastica(Box::new(r)), note))
-        }
-        Analysis::Dynamic(d) => {
-            let n = if quick { 16 } else { REFERENCE_ELEMENTS };
-            let config = |size| Config {
-                model: Model::Equivalent,
-                size,
-                integrator: Some("verlet".into()),
-                time_step: None,
-            };
-            // Frames 10x denser than the scene's for the interpolation of the reference.
-            let interval = Some(d.output_interval / 10.0);
-            let mut tips = Vec::new();
-            for size in [n, n / 2] {
-                let c = config(size);
-                let sub = dir.join(format!("reference-{size}"));
-                let label = format!("{} reference {}", scene.name, c.label());
-                let o = run_into(&c.scene(scene, interval)?, &sub, bar, *tick * 1000, &label)?;
-                *tick += 1;
-                if o.iter().any(|o| o.ok().is_none()) {
-                    anyhow::bail!("{label}: the reference run failed: {:?}", o[0].error);
-                }
-                tips.push(Tip::load(&sub.join("equivalent"))?);
-            }
-            let self_error = worst(tips[1].distance_to(&tips[0]).iter().map(|p| p.1));
-            let note = format!(
-                "the equivalent model with {n} elements, Stoermer-Verlet at its estimated stable \
-                 step, frames every {:.0e} s, interpolated by cubic Hermite at each run's output \
-                 times. Error = largest tip distance over the output times. Its own error, \
-                 estimated by the {} element run: {self_error:.1e} m. The traditional and fine \
-                 models differ from it by their modelling as well",
-                d.output_interval / 10.0,
-                n / 2
-            );
-            Ok((Reference::Tip(tips.swap_remove(0)), note))
-        }
-    }
-}
-
-/// Error of the run in `dir` against the reference (m).
-fn measure(reference: &Reference, dir: &std::path::Path, tip: [f64; 3]) -> anyhow::Result<f64> {
-    match reference {
-        Reference::Elastica(r) => Ok(checks::distance(&Centerline::load(dir)?, tip, r).max),
-        Reference::Tip(r) => {
-            let d = Tip::load(dir)?.distance_to(r);
-            if d.is_empty() {
-                anyhow::bail!("no output time inside the reference's span");
-            }
-            Ok(worst(d.iter().map(|p| p.1)))
-        }
     }
 }
 
@@ -512,12 +572,16 @@ fn measure(reference: &Reference, dir: &std::path::Path, tip: [f64; 3]) -> anyho
 mod tests {
     use super::*;
 
-    /// Each configuration runs only its model, with its size, integrator and step.
+    /// Each configuration runs only its model, with its size, integrator and step; the fine
+    /// runs double from the stated segments per pitch.
     #[test]
     fn configurations_run_one_model_each() {
-        let scene = load_scene("paper-fig8-clamped").unwrap();
-        let plan = plan(&scene, false, &[20, 40, 77]);
-        assert!(plan.iter().any(|c| c.model == Model::Fine && c.size == 77));
+        let scene = load_scene(DYNAMIC_SCENE).unwrap();
+        let sizes = fine_sizes(&scene, 2.5, 4);
+        // 0.4 m of a 20 deg lay with the layer at radius 2.5 mm: 9.26 pitches.
+        assert_eq!(sizes, [23, 46, 92, 184]);
+        let plan = plan(&scene, false, &sizes);
+        assert!(plan.iter().any(|c| c.model == Model::Fine && c.size == 184));
         let ga = plan
             .iter()
             .find(|c| c.integrator.as_deref() == Some("generalized-alpha"))
@@ -544,6 +608,14 @@ mod tests {
         let s = fine.scene(&scene, None).unwrap();
         assert_eq!(s.models.fine.unwrap().segments_per_wire, fine.size);
         assert!(s.models.equivalent.is_none());
-        assert_eq!(fine.label(), "fine 20 seg/wire");
+        assert_eq!(fine.label(), "fine 23 seg/wire");
+        // The converged equivalent comes from the generalized-alpha sequence only.
+        let seq = sequence(&plan, Model::Equivalent);
+        assert!(
+            seq.iter()
+                .all(|&i| plan[i].integrator.as_deref() == Some("generalized-alpha"))
+        );
+        let stat = load_scene(STATIC_SCENE).unwrap();
+        assert_eq!(fine_sizes(&stat, 5.0, 4), [7, 14, 28, 56]);
     }
 }

@@ -1,8 +1,8 @@
 //! Runs the beam models of a scene (equivalent and traditional, strand-ancf) and writes their
 //! result files.
 
+use super::stopwatch::Stopwatch;
 use std::path::Path;
-use std::time::Instant;
 
 use strand_ancf::band::BandMatrix;
 use strand_ancf::beam::{
@@ -376,9 +376,9 @@ fn run_static(
         load_steps,
         ..StaticOptions::default()
     };
-    let t0 = Instant::now();
+    let clock = Stopwatch::start();
     let sol = solve_static(beam, &opts, progress);
-    summary.wall_time_s = t0.elapsed().as_secs_f64();
+    clock.record(summary);
     let title = format!("{} static", summary.scene);
     let vtk = vtk.then_some(title.as_str());
     let sol = match sol {
@@ -452,7 +452,7 @@ fn run_dynamics(
     let mut last_slip = init.state.clone();
     let mut last_points: Vec<PointState> = Vec::new();
     let mut last_t = 0.0;
-    let t0 = Instant::now();
+    let clock = Stopwatch::start();
     let result = run_dynamic_from(beam, opts, init, &mut |f| {
         if write_error.is_some() {
             return;
@@ -481,7 +481,7 @@ fn run_dynamics(
         last_t = f.t;
         progress(f.t / opts.duration);
     });
-    summary.wall_time_s = t0.elapsed().as_secs_f64();
+    clock.record(summary);
     let blanks = files.blanks();
     files.finish().map_err(Stop::output)?;
     if blanks > 0 {

@@ -20,8 +20,8 @@
 //!   statics the far part's total load is the equilibrium residual (zero), so the moment is
 //!   that of the far part's weight.
 
+use super::stopwatch::Stopwatch;
 use std::path::Path;
-use std::time::Instant;
 
 use nalgebra::{UnitQuaternion, Vector3};
 use strand_fine as fine;
@@ -279,9 +279,9 @@ fn run_static(
         load_steps,
         ..fine::StaticOptions::default()
     };
-    let t0 = Instant::now();
+    let clock = Stopwatch::start();
     let report = fine::solve_static_with_progress(model, state, &opts, progress);
-    summary.wall_time_s = t0.elapsed().as_secs_f64();
+    clock.record(summary);
     let report = report.map_err(|e| {
         let reason = match e {
             fine::StaticError::NonFinite { .. } => Failure::NonFinite,
@@ -317,14 +317,14 @@ fn run_settle(
         opts.settle.max_time = by_steps;
     }
     opts.settle.time_step = Some(dt);
-    let t0 = Instant::now();
+    let clock = Stopwatch::start();
     let mut first = None;
     let report = fine::solve_settled(model, state, &opts, &mut |_, _, ratio| {
         // Progress: the residual's fall to its allowance, on a log scale.
         let r0 = *first.get_or_insert(ratio.max(10.0));
         progress((r0 / ratio.max(1.0)).ln() / r0.ln());
     });
-    summary.wall_time_s = t0.elapsed().as_secs_f64();
+    clock.record(summary);
     let r = report.map_err(|e| match e {
         fine::SettleError::NonFinite { .. } => Stop::new(Failure::NonFinite, e.to_string()),
         fine::SettleError::NotSettled { .. } if capped => Stop::new(
@@ -476,7 +476,7 @@ fn run_dynamic(
     };
     write(0.0, model, state, &e0, 0.0)
         .map_err(|e| Stop::output(format!("writing results: {e}")))?;
-    let t0 = Instant::now();
+    let clock = Stopwatch::start();
     let mut failure = None;
     // The state of the last output frame: what the files keep if the run blows up.
     let (mut last_good, mut last_t) = (state.clone(), 0.0);
@@ -519,7 +519,7 @@ fn run_dynamic(
             "centerline.csv and contacts.csv hold the last output frame, t = {last_t:.6e} s"
         ));
     }
-    summary.wall_time_s = t0.elapsed().as_secs_f64();
+    clock.record(summary);
     summary.steps = int.steps as usize;
     let blanks = files.blanks();
     files.finish().map_err(Stop::output)?;

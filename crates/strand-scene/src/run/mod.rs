@@ -9,6 +9,7 @@ mod beam_state;
 mod budget;
 pub(crate) mod fine;
 pub(crate) mod record;
+mod stopwatch;
 
 use strand_core::LawKind;
 

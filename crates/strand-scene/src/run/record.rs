@@ -47,6 +47,9 @@ pub struct RunSummary {
     pub newton_iterations: usize,
     /// Wall time of the solve (s).
     pub wall_time_s: f64,
+    /// CPU time of the process over the same span, all threads (s); `None` where the platform
+    /// has no process clock.
+    pub cpu_time_s: Option<f64>,
     /// Tip position at the end, or where the run stopped (m); `None` if nothing was computed.
     pub tip: Option<[f64; 3]>,
     /// Time step (s, dynamics).
@@ -188,6 +191,7 @@ impl RunSummary {
             steps: 0,
             newton_iterations: 0,
             wall_time_s: 0.0,
+            cpu_time_s: None,
             tip: None,
             time_step: None,
             stable_time_step: None,
