@@ -41,8 +41,9 @@ enum Task {
     /// against the rod model of the bonded strand; target/bonded/. Fails on any failed
     /// criterion (validation/bonded/criteria.json).
     Bonded(bonded::BondedArgs),
-    /// Speed against error of the models on a static and a dynamic scene: table, log-log plot
-    /// with the Pareto front, speed-up at equal distance to the reference; target/pareto/.
+    /// Speed against error of the models on a static and a dynamic scene: each run against the
+    /// converged fine model and against its own converged discretisation, log-log plots, and
+    /// the CPU time of each model to come within a stated distance X; target/pareto/.
     Pareto(pareto::ParetoArgs),
     /// The section-3 pendulum in strand and in Exudyn (pip install exudyn), timed side by side
     /// in interleaved runs, with the trajectories checked against each other;

@@ -102,6 +102,8 @@ pub fn reaching(points: &[Point], target: f64) -> Reaching {
     let (e, f) = (reach(&eq, target), reach(&fine, target));
     let ratio = |a: Option<f64>, b: Option<f64>| a.zip(b).map(|(f, e)| f / e);
     let ratio_kind = match (e.kind.as_str(), f.kind.as_str()) {
+        ("never", _) => "none: the equivalent never comes within X",
+        (_, "never") => "none: the fine model never comes within X",
         ("at most", "at most") => "unbounded: both cheapest runs are within",
         ("at most", _) => "at least",
         (_, "at most") => "at most",
@@ -608,6 +610,7 @@ mod tests {
         let r = reaching(&pts, 1e-4);
         assert_eq!(r.equivalent.kind, "never");
         assert_eq!(r.cpu_ratio, None);
+        assert!(r.ratio_kind.starts_with("none"));
         // Above the coarsest fine run: the fine time is an upper bound.
         let r = reaching(&pts, 5e-3);
         assert_eq!(r.fine.kind, "at most");
