@@ -232,6 +232,28 @@ pub enum DynamicError {
         /// Estimated stable step (s).
         stable: f64,
     },
+    /// The explicit run created energy: its balance is off by more than all the energy the
+    /// strand was ever given, which no stable step does (the stable step is estimated at the
+    /// straight reference and does not bound every deformed state).
+    #[error(
+        "Verlet run unstable at t = {t:.4e} s: the energy balance is off by {error:.3e} J, more \
+         than the {supplied:.3e} J the strand was ever given (initial state, gravity, supports); \
+         the step {step:.4e} s is above the stable step of the deformed strand (the estimate \
+         {stable:.4e} s is taken at the straight reference): use a smaller analysis.time_step or \
+         the generalized-alpha integrator"
+    )]
+    Diverged {
+        /// Time of the step that found it (s).
+        t: f64,
+        /// Energy balance error (J).
+        error: f64,
+        /// Largest energy given to the strand so far (J).
+        supplied: f64,
+        /// Step (s).
+        step: f64,
+        /// Estimated stable step (s).
+        stable: f64,
+    },
     /// A matrix could not be factorized.
     #[error("singular {0} matrix")]
     Singular(&'static str),
@@ -455,6 +477,7 @@ fn verlet(
         points: &pts,
         slip: &slip,
     });
+    let mut supplied = 0.0f64;
     let mut next_out = opts.output_interval;
     for step in 1..=n_steps {
         let t = step as f64 * h;
@@ -487,6 +510,19 @@ fn verlet(
         drive.end_step(beam, &q, &vf, &force);
         std::mem::swap(&mut pts, &mut pts_new);
         en = ledger.energies(beam, t, &q, &vf, &drive, &mut mv, ev.energy);
+        // Energy given to the strand so far: the initial state's, gravity's and the supports'
+        // work and the law's non-potential work (each in absolute value, a bound).
+        supplied = supplied
+            .max(ledger.e0.abs() + en.gravity.abs() + en.supports.abs() + en.non_potential.abs());
+        if ledger.balance_error > supplied {
+            return Err(DynamicError::Diverged {
+                t,
+                error: ledger.balance_error,
+                supplied,
+                step: h,
+                stable,
+            });
+        }
         if t >= next_out - 1e-9 * h || step == n_steps {
             scatter_velocity(beam, &vf, &drive, &mut v);
             observer(Frame {

@@ -176,6 +176,29 @@ fn a_failing_model_leaves_the_others_to_run() {
     assert_clean(&out);
 }
 
+/// An explicit run that goes unstable after its start fails instead of ending `ok`: the Table 1
+/// clamped pendulum (Fig. 8) on 4 elements at 0.9 of the stable step estimated at the straight
+/// reference swings stably for 0.36 s, then its energy jumps by more than the strand was ever
+/// given (about 1 J against 0.15 J of gravity work); the run stops there with `unstable-step`,
+/// keeping the frames before it.
+#[test]
+fn an_explicit_run_that_creates_energy_fails() {
+    let mut v: Value =
+        serde_json::from_str(include_str!("../../../validation/paper-fig8-clamped.json")).unwrap();
+    v["name"] = json!("verlet-4-elements");
+    v["analysis"] = json!({ "kind": "dynamic", "duration": 0.5, "integrator": "verlet",
+                            "output_interval": 0.01 });
+    v["models"] = json!({ "equivalent": { "elements": 4 } });
+    v["section"] = json!({ "base_stiffness": "costello" });
+    let (s, out) = run(&v, "diverged");
+    assert_eq!(s[0].reason, Some(Failure::UnstableStep), "{:?}", s[0]);
+    let error = s[0].error.as_deref().unwrap();
+    assert!(error.contains("more than the"), "{error}");
+    let tip = std::fs::read_to_string(out.join("equivalent/tip.csv")).unwrap();
+    assert!(tip.lines().count() > 30, "frames before the jump are kept");
+    assert_clean(&out);
+}
+
 /// A model that cannot be built (here an equivalent beam edited past the pitch rule's cap
 /// after validation) fails with the reason `setup`; the traditional and fine models run.
 #[test]

@@ -335,7 +335,7 @@ fn failure_of_dynamic(e: &DynamicError) -> Failure {
     match e {
         DynamicError::Beam { source, .. } => failure_of_beam(source),
         DynamicError::Newton { .. } | DynamicError::Singular(_) => Failure::NoConvergence,
-        DynamicError::Unstable { .. } => Failure::UnstableStep,
+        DynamicError::Unstable { .. } | DynamicError::Diverged { .. } => Failure::UnstableStep,
         DynamicError::Setup(_) => Failure::Setup,
     }
 }
