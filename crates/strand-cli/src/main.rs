@@ -419,7 +419,7 @@ fn print_summary(scene: &Scene, s: &StrandSummary) {
         strand.length(),
         strand.friction()
     );
-    let rows: [(&str, String); 15] = [
+    let rows: [(&str, String); 16] = [
         ("helix radius R_w", opt(s.r_w, "m")),
         ("pitch P", opt(s.pitch, "m")),
         ("lay angle", opt(s.lay_angle_deg, "deg")),
@@ -446,6 +446,10 @@ fn print_summary(scene: &Scene, s: &StrandSummary) {
                 s.stick_stiffness,
                 s.stick_factor.map_or("-".into(), |f| format!("{f:.4}"))
             ),
+        ),
+        (
+            "wire friction limit",
+            format!("{} (section.slip_limit)", s.slip_limit),
         ),
         (
             "bending stiffness K_max (all stick)",

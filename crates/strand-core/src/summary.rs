@@ -5,7 +5,7 @@ use serde::Serialize;
 
 use crate::bonded::StickStiffness;
 use crate::geometry::Strand;
-use crate::section::{LawKind, SectionLaw, SectionOptions, WireReport};
+use crate::section::{LawKind, SectionLaw, SectionOptions, SlipLimit, WireReport};
 use crate::wire_bending::BaseStiffness;
 
 /// Derived quantities of a strand (keys as in SPEC 6 `strand section --json`). Layer
@@ -42,6 +42,8 @@ pub struct StrandSummary {
     /// Factor on the plane-section stick stiffness that the laws use (-): the rod model's
     /// for `bonded`, 1 for `plane_section`; `None` for a plain wire.
     pub stick_factor: Option<f64>,
+    /// Which friction limit the slipping wires have (`section.slip_limit`).
+    pub slip_limit: SlipLimit,
     /// All-stick bending stiffness the section laws use (N m^2): K_min plus eq. (22a) summed,
     /// times `stick_factor`.
     #[serde(rename = "K_max")]
@@ -107,6 +109,7 @@ impl StrandSummary {
             k_min_paper: strand.min_bending_stiffness(BaseStiffness::Paper),
             stick_stiffness: options.stick_stiffness,
             stick_factor: l.map(|_| options.stick_stiffness.factor(strand)),
+            slip_limit: options.slip_limit,
             k_max: SectionLaw::with_options(strand, LawKind::Continuous, options)
                 .stick_bending_stiffness(),
             k_max_plane_section: strand.max_bending_stiffness(base),

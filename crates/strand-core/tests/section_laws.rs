@@ -7,8 +7,8 @@ mod common;
 use proptest::prelude::*;
 use std::f64::consts::PI;
 use strand_core::{
-    BaseStiffness, LawKind, LayDirection, LayerSpec, Material, SectionLaw, Station, StickStiffness,
-    Strand, StrandSpec, WireSpec, WireState,
+    BaseStiffness, LawKind, LayDirection, LayerSpec, Material, SectionLaw, SectionOptions,
+    SlipLimit, Station, StickStiffness, Strand, StrandSpec, WireSpec, WireState,
 };
 
 /// A random valid 1+m strand: sizes, moduli, lay angle, phase, lay direction, friction.
@@ -164,15 +164,22 @@ proptest! {
         }
     }
 
-    /// `paper`: at a wire's switch its moment drops by exactly cos^2(alpha).
+    /// `paper` with the paper's slip limit (eqs. (20), (22b) as printed): at a wire's switch
+    /// its moment drops by exactly cos^2(alpha); with Papailiou's (axial projection
+    /// cos(alpha)) eq. (23) is where eqs. (22a) and (22b) meet: no drop.
     #[test]
     fn paper_law_drops_by_cos2_alpha(
         s in strand(), eps in 1e-5..1e-2f64, x in 0.0..1.0f64,
         sense in prop::sample::select(vec![-1.0, 1.0]),
+        limit in prop::sample::select(SlipLimit::ALL.to_vec()),
     ) {
-        let law = SectionLaw::new(&s, LawKind::Paper);
+        let options = SectionOptions { slip_limit: limit, ..Default::default() };
+        let law = SectionLaw::with_options(&s, LawKind::Paper, &options);
         let st = law.station(x);
-        let c2 = s.layer().unwrap().lay_angle().cos().powi(2);
+        let c2 = match limit {
+            SlipLimit::Paper => s.layer().unwrap().lay_angle().cos().powi(2),
+            SlipLimit::Papailiou => 1.0,
+        };
         for w in law.planar_wires(&st, eps, sense, &[]) {
             if let Some(kc) = w.critical_curvature
                 && w.k_stick * kc > 0.0
@@ -186,7 +193,7 @@ proptest! {
                     let above = sense * planar(&law, &st, eps, sense * (kc + d)).moment;
                     let others = (s.min_bending_stiffness(BaseStiffness::default()) + s.max_bending_stiffness(BaseStiffness::default())) * 4.0 * d;
                     let drop = w.k_stick * kc * (1.0 - c2);
-                    prop_assert!(((below - above) - drop).abs() <= others + 1e-9 * drop,
+                    prop_assert!(((below - above) - drop).abs() <= others + 1e-9 * w.k_stick * kc,
                         "drop {} vs {}", below - above, drop);
             }
         }
@@ -369,50 +376,128 @@ fn edge_cases_are_finite() {
     }
 }
 
-/// phi -> 0: the continuous law's critical curvature tends to sigma_a mu sin(alpha) / (E_w R_w)
-/// (SPEC 2); the paper's (23) to that divided by cos^2(alpha). phi -> pi: it grows without
-/// bound while the stick stiffness vanishes.
+/// phi -> 0: the critical curvature tends to sigma_a mu sin(alpha) / (E_w R_w cos^2(alpha)),
+/// eq. (23)'s limit, for both laws with Papailiou's slip limit (hand computation: the slip
+/// force cos(alpha) A_w sigma_a mu sin(alpha) theta meets the stick force eta E_w A_w R_w
+/// kappa theta); with the paper's limit (22b) the continuous law's tends to cos^2(alpha) times
+/// that (SPEC 2). phi -> pi: with Papailiou's limit the same finite limit (the slip starts
+/// at both crossings); with the paper's it grows without bound. The stick stiffness vanishes.
 #[test]
 fn critical_curvature_limits() {
     let eps = 1e-3;
     let a = 20f64.to_radians();
-    let (e, mu, rw) = (2.0e8, 0.3, 2.5e-3);
+    let (e, rw, mu) = (2.0e9, 2.5e-3, 0.3);
     let sigma = e * a.cos().powi(2) * eps;
-    let limit = sigma * mu * a.sin() / (e * rw);
-    for (kind, want) in [
-        (LawKind::Continuous, limit),
-        (LawKind::Paper, limit / a.cos().powi(2)),
+    let limit = sigma * mu * a.sin() / (e * rw * a.cos().powi(2));
+    let c2 = a.cos().powi(2);
+    for (kind, slip_limit, want) in [
+        (LawKind::Continuous, SlipLimit::Papailiou, limit),
+        (LawKind::Paper, SlipLimit::Papailiou, limit),
+        (LawKind::Continuous, SlipLimit::Paper, limit * c2),
+        (LawKind::Paper, SlipLimit::Paper, limit),
     ] {
-        let mut prev = f64::INFINITY;
-        for phase in [1e-2, 1e-4, 1e-8, 1e-12] {
-            let mut spec = common::table1();
-            spec.layers[0].phase = phase;
-            let s = Strand::new(spec).unwrap();
-            let law = SectionLaw::new(&s, kind);
-            let w = law.planar_wires(&law.station(0.0), eps, -1.0, &[])[0];
-            // The default stick stiffness is the bonded strand's, f K_stick: a wire slips at
-            // 1/f times the plane section's critical curvature.
-            let f = StickStiffness::default().factor(&s);
-            let err = (f * w.critical_curvature.unwrap() - want).abs() / want;
+        let options = SectionOptions {
+            slip_limit,
+            ..Default::default()
+        };
+        // Phases toward the near crossing (0) and, with Papailiou's limit, the far one (pi).
+        let toward_pi = slip_limit == SlipLimit::Papailiou;
+        for far in [false, true].into_iter().filter(|f| !f || toward_pi) {
+            let mut prev = f64::INFINITY;
+            // Toward pi the phase's round-off (1e-16 rad) limits the approach.
+            let steps: &[f64] = if far {
+                &[1e-2, 1e-4, 1e-6]
+            } else {
+                &[1e-2, 1e-4, 1e-8, 1e-12]
+            };
+            for &d in steps {
+                let mut spec = common::table1();
+                spec.layers[0].phase = if far { PI - d } else { d };
+                let s = Strand::new(spec).unwrap();
+                let law = SectionLaw::with_options(&s, kind, &options);
+                let w = law.planar_wires(&law.station(0.0), eps, -1.0, &[])[0];
+                // The default stick stiffness is the bonded strand's, f K_stick: a wire slips
+                // at 1/f times the plane section's critical curvature.
+                let f = StickStiffness::default().factor(&s);
+                let err = (f * w.critical_curvature.unwrap() - want).abs() / want;
+                assert!(
+                    err <= prev.max(1e-9),
+                    "{kind} {slip_limit}: error {err} at {d} from the crossing"
+                );
+                prev = err;
+            }
+            // The ratio gain / sin(theta) approaches its limit as 1 + c d / 2: 5e-8 at d = 1e-6.
+            let tol = if far { 1e-7 } else { 1e-9 };
             assert!(
-                err <= prev.max(1e-9),
-                "{kind}: error {err} at phase {phase}"
+                prev < tol,
+                "{kind} {slip_limit}: limit not reached ({prev})"
             );
-            prev = err;
         }
-        assert!(prev < 1e-9, "{kind}: limit not reached ({prev})");
     }
+    let paper = SectionOptions {
+        slip_limit: SlipLimit::Paper,
+        ..Default::default()
+    };
     let mut last = 0.0;
     for d in [1e-1, 1e-3, 1e-6] {
         let mut spec = common::table1();
         spec.layers[0].phase = PI - d;
         let s = Strand::new(spec).unwrap();
-        let law = SectionLaw::new(&s, LawKind::Continuous);
+        let law = SectionLaw::with_options(&s, LawKind::Continuous, &paper);
         let w = law.planar_wires(&law.station(0.0), eps, -1.0, &[])[0];
         let c = w.critical_curvature.unwrap();
         assert!(c > last);
         assert!(w.k_stick < 1e-3 * d * d * 1e3);
         last = c;
+    }
+}
+
+/// Deep slip: as the curvature grows every wire slips and the pitch-mean moment tends to
+/// K_min kappa plus the friction moments, by hand: each wire's limit is cos(alpha) A_w sigma_a
+/// times the capstan gain of the angle theta_n from the nearest neutral-axis crossing, so over
+/// a pitch its moment averages (I+ + I-) cos(alpha) A_w sigma_a R_w / pi with
+/// I+ = int_0^{pi/2} (exp(c t) - 1) sin(t) dt = (c exp(c pi/2) + 1) / (1 + c^2) - 1 and
+/// I- = int_0^{pi/2} (1 - exp(-c t)) sin(t) dt = 1 - (1 - c exp(-c pi/2)) / (1 + c^2),
+/// c = mu sin(alpha). The paper's limit (the angle from one half of the neutral axis, over
+/// [0, pi], and eta for cos(alpha)) averages (J+ + J-) eta A_w sigma_a R_w / (2 pi) with the
+/// integrals over [0, pi], J+ = (exp(c pi) + 1) / (1 + c^2) - 2 and
+/// J- = 2 - (exp(-c pi) + 1) / (1 + c^2).
+#[test]
+fn deep_slip_moment_is_the_friction_limits_by_hand() {
+    let s = Strand::new(common::table1()).unwrap();
+    let l = s.layer().unwrap();
+    let (a, rw, m) = (l.lay_angle(), l.radius, l.wires() as f64);
+    let w = &l.spec.wire;
+    let eps = 2e-3;
+    let sigma = w.material.youngs_modulus * a.cos().powi(2) * eps;
+    let c = s.friction() * a.sin();
+    let k_min = s.min_bending_stiffness(BaseStiffness::default());
+    let half = 0.5 * PI;
+    let papailiou = (((c * (c * half).exp() + 1.0) / (1.0 + c * c) - 1.0)
+        + (1.0 - (1.0 - c * (-c * half).exp()) / (1.0 + c * c)))
+        / PI;
+    let paper = (((c * PI).exp() + 1.0) / (1.0 + c * c) - 2.0
+        + (2.0 - ((-c * PI).exp() + 1.0) / (1.0 + c * c)))
+        / (2.0 * PI);
+    for (limit, mean, projection) in [
+        (SlipLimit::Papailiou, papailiou, a.cos()),
+        (SlipLimit::Paper, paper, a.cos().powi(3)),
+    ] {
+        let options = SectionOptions {
+            slip_limit: limit,
+            ..Default::default()
+        };
+        let law = SectionLaw::with_options(&s, LawKind::Continuous, &options);
+        let friction = m * mean * projection * w.area() * sigma * rw;
+        // 1e5 times the first-slip curvature: the stick zones are 1e-5 of a pitch.
+        let kappa = 1e5 * sigma * c / (w.material.youngs_modulus * rw);
+        let got = law.pitch_mean_moment(eps, kappa, 4096) - k_min * kappa;
+        let err = (got / friction - 1.0).abs();
+        // The stick zones (1e-5 of the wire) and the 4096-station midpoint rule (1e-6).
+        assert!(
+            err < 1e-4,
+            "{limit}: friction moment {got} vs {friction} ({err})"
+        );
     }
 }
 
@@ -583,17 +668,26 @@ fn non_potential_work_closes_the_energy_balance() {
 /// committed at every step) minus the non-potential work `energy_strain d eps + energy_turn .
 /// d kappa`. Without the last term the balance is off by the work the moment (parallel to the
 /// curvature) does not do when the wires' levers and friction limits turn with the bending
-/// direction (checked too), so the test fails if `energy_turn` is wrong or missing.
+/// direction (checked too), so the test fails if `energy_turn` is wrong or missing. Both
+/// slip limits: the paper's (smooth in the bending direction) and Papailiou's, whose limit
+/// has a kink where a wire passes the extreme fibre.
 #[test]
 fn non_potential_work_closes_the_energy_balance_in_3d() {
     let s = Strand::new(common::table1()).unwrap();
-    for kind in [
+    for (kind, limit) in [
         LawKind::Continuous,
         LawKind::Paper,
         LawKind::Hysteretic,
         LawKind::Constant,
-    ] {
-        let law = SectionLaw::new(&s, kind);
+    ]
+    .into_iter()
+    .flat_map(|k| SlipLimit::ALL.map(|l| (k, l)))
+    {
+        let options = SectionOptions {
+            slip_limit: limit,
+            ..Default::default()
+        };
+        let law = SectionLaw::with_options(&s, kind, &options);
         for x in [0.0, 0.007, 0.02] {
             let st = law.station(x);
             let mut slip = vec![0.0; law.state_len()];
@@ -635,22 +729,28 @@ fn non_potential_work_closes_the_energy_balance_in_3d() {
             // The paper law's moment jumps at each switch, and the hysteretic return mapping
             // books the slip of a step at its end: against the trapezoidal work both err at
             // first order in the step at every switch.
-            let tol = match kind {
-                LawKind::Paper | LawKind::Hysteretic => 1e-4,
+            // Papailiou's limit is continuous but has a kink at the extreme fibre (theta_n =
+            // min(theta, pi - theta)): there `energy_turn` of a slipping wire changes sign, and
+            // the trapezoid errs at first order in the step at each such crossing (measured
+            // 0.8e-6 to 6.4e-6 of the energy at 20000 steps, 0.1e-6 to 1.5e-6 at 80000; with the
+            // paper's limit 0.5e-9 to 2.7e-9, second order).
+            let tol = match (kind, limit) {
+                (LawKind::Paper | LawKind::Hysteretic, _) => 1e-4,
+                (_, SlipLimit::Papailiou) => 2e-5,
                 _ => 1e-6,
             };
             assert!(
                 err <= tol * scale,
-                "{kind} x {x}: work {work} stored {stored} slip {slip_work} non-potential \
-                 {non_potential} turn {turn}"
+                "{kind} {limit} x {x}: work {work} stored {stored} slip {slip_work} \
+                 non-potential {non_potential} turn {turn}"
             );
             if kind == LawKind::Constant {
                 assert_eq!(turn, 0.0);
             } else if kind != LawKind::Paper {
                 // The turn term is far above the tolerance on this path: the balance needs it.
                 assert!(
-                    turn.abs() > 100.0 * tol * scale,
-                    "{kind} x {x}: turn {turn}"
+                    turn.abs() > 10.0 * tol * scale,
+                    "{kind} {limit} x {x}: turn {turn}"
                 );
             }
             if kind == LawKind::Hysteretic {

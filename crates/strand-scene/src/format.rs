@@ -64,6 +64,11 @@ pub struct SectionFile {
     /// the paper's).
     #[serde(default)]
     pub stick_stiffness: Option<String>,
+    /// The slipping wires' friction limit: `papailiou` (default; the capstan gain from the
+    /// nearest neutral-axis crossing, axial projection cos(alpha)) or `paper` (eqs. (20),
+    /// (22b) as printed).
+    #[serde(default)]
+    pub slip_limit: Option<String>,
 }
 
 /// A core wire.

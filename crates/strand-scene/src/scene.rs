@@ -11,7 +11,7 @@ use strand_ancf::beam::{
 };
 use strand_core::{
     BaseStiffness, DEFAULT_FRICTION, InputError, LawKind, LayDirection, LayerSpec, Material,
-    SectionOptions, StickStiffness, Strand, StrandSpec, WireSpec,
+    SectionOptions, SlipLimit, StickStiffness, Strand, StrandSpec, WireSpec,
 };
 
 use nalgebra::Vector3;
@@ -591,6 +591,15 @@ fn section(file: Option<&SectionFile>) -> Result<SectionOptions, SceneError> {
                     "unknown stick stiffness `{name}`: expected {}",
                     names.join(", ")
                 ),
+            )
+        })?;
+    }
+    if let Some(name) = file.slip_limit.as_deref() {
+        options.slip_limit = SlipLimit::from_name(name).ok_or_else(|| {
+            let names: Vec<&str> = SlipLimit::ALL.iter().map(|b| b.name()).collect();
+            SceneError::new(
+                "section.slip_limit",
+                format!("unknown slip limit `{name}`: expected {}", names.join(", ")),
             )
         })?;
     }

@@ -5,17 +5,18 @@
 //! The fine model is the Table 1 strand (mu = 0.3) at the study's converged settings (one
 //! contact point per segment, 3 pitches) at two meshes, 24 and 48 segments per pitch; the
 //! change between them bounds the discretisation error of the finer. The law is the default
-//! `continuous` law (Costello's K_min, the `bonded` stick stiffness) at the strain of the
-//! tension, averaged over one pitch; beside it the law with the plane-section stick stiffness
-//! (the paper's K_max), reported only.
+//! `continuous` law (Costello's K_min, the `bonded` stick stiffness, Papailiou's slip limit) at
+//! the strain of the tension, averaged over one pitch; beside it, reported only, the law with
+//! the paper's slip limit (eqs. (20), (22b) as printed) and the law with the plane-section stick
+//! stiffness (the paper's K_max).
 
 use std::time::Instant;
 
 use anyhow::Context;
 use serde::Serialize;
 use strand_core::{
-    BondedOptions, LawKind, SectionLaw, SectionOptions, StickStiffness, Strand, StrandSpec,
-    bonded_stiffness,
+    BondedOptions, LawKind, SectionLaw, SectionOptions, SlipLimit, StickStiffness, Strand,
+    StrandSpec, bonded_stiffness,
 };
 use strand_fine::{BendingTest, ContactOptions, SpringScale};
 
@@ -45,8 +46,10 @@ pub struct Curve {
     pub fine: Vec<[f64; 2]>,
     /// Slipping contacts of the finest mesh, per curvature.
     pub slipping: Vec<usize>,
-    /// The `bonded` law's and the `plane_section` law's moments (N m).
+    /// The default law's moments, the law's with the paper's slip limit and the law's with
+    /// the `plane_section` stick stiffness (N m).
     pub law: Vec<f64>,
+    pub law_paper_limit: Vec<f64>,
     pub law_plane_section: Vec<f64>,
     /// K_min and the two laws' all-stick stiffnesses (N m^2).
     pub k_min: f64,
@@ -136,16 +139,18 @@ pub fn run(strand: &Strand, tension: f64) -> anyhow::Result<Curve> {
         slipping = points[1..].iter().map(|p| p.slip).collect();
     }
     let eps = tension / strand.axial_stiffness();
-    let law = |stick: StickStiffness| {
+    let law = |stick_stiffness: StickStiffness, slip_limit: SlipLimit| {
         let options = SectionOptions {
-            stick_stiffness: stick,
+            stick_stiffness,
+            slip_limit,
             ..Default::default()
         };
         SectionLaw::with_options(strand, LawKind::Continuous, &options)
     };
-    let (bonded, plane) = (
-        law(StickStiffness::Bonded),
-        law(StickStiffness::PlaneSection),
+    let (bonded, paper_limit, plane) = (
+        law(StickStiffness::Bonded, SlipLimit::Papailiou),
+        law(StickStiffness::Bonded, SlipLimit::Paper),
+        law(StickStiffness::PlaneSection, SlipLimit::Papailiou),
     );
     let moments = |l: &SectionLaw| -> Vec<f64> {
         curvature
@@ -170,6 +175,7 @@ pub fn run(strand: &Strand, tension: f64) -> anyhow::Result<Curve> {
         tension,
         strain: eps,
         law: moments(&bonded),
+        law_paper_limit: moments(&paper_limit),
         law_plane_section: moments(&plane),
         curvature,
         fine,
@@ -208,19 +214,20 @@ pub fn details(c: &Curve) -> String {
     let mut s = format!(
         "\nT = {} N (strain {:.2e}): K_min {:.4e}, all-stick {:.4e} (bonded), {:.4e} (plane section) N m^2; \
          the test's penalties put the rod model at {:.4} of its rigid bond\n\n\
-         | kappa 1/m | fine M/kappa at 24, 48 | slipping contacts | law (bonded) / fine | law (plane section) / fine |\n\
-         |---:|---|---:|---:|---:|\n",
+         | kappa 1/m | fine M/kappa at 24, 48 | slipping contacts | law / fine | law, paper's slip limit / fine | law, plane section / fine |\n\
+         |---:|---|---:|---:|---:|---:|\n",
         c.tension, c.strain, c.k_min, c.k_bonded, c.k_plane_section, c.penalty_ratio
     );
     for (i, k) in c.curvature.iter().enumerate() {
         let f = c.fine[i];
         let _ = writeln!(
             s,
-            "| {k:.3e} | {:.4e}, {:.4e} | {} | {:.4} | {:.4} |",
+            "| {k:.3e} | {:.4e}, {:.4e} | {} | {:.4} | {:.4} | {:.4} |",
             f[0] / k,
             f[1] / k,
             c.slipping[i],
             c.law[i] / f[1],
+            c.law_paper_limit[i] / f[1],
             c.law_plane_section[i] / f[1]
         );
     }

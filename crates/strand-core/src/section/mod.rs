@@ -21,21 +21,27 @@
 //! (curvature centre toward -y, `kappa_z < 0`, the paper's hanging cantilever) uses the phases
 //! of eq. (36) as they are; bending the other way mirrors them, phi -> -phi (SPEC 2).
 //!
-//! The friction limit of a wire grows with its angle theta from the neutral axis through the
-//! capstan gain of eq. (20): `exp(mu theta sin(alpha)) - 1` for a stretched wire and
-//! `1 - exp(-mu theta sin(alpha))` for a shortened one (eq. (20) with the sign of the wire's
-//! side). The neutral axis is the line along `kappa` in the section; its reference half is the
-//! one with a non-negative z component (the +y half when `kappa_z = 0`). For planar bending
-//! this is the +z axis in both senses, which is exactly the SPEC 2 mirror convention; for
-//! general 3D bending it changes sides when `kappa_z` changes sign, so the limits of the
-//! (already asymmetric) paper law jump there. K_min and the axial stiffness are isotropic.
+//! The friction limit of a wire grows with its angle from the neutral axis through the capstan
+//! gain of eq. (20): `exp(mu theta_n sin(alpha)) - 1` for a stretched wire and `1 - exp(-mu
+//! theta_n sin(alpha))` for a shortened one (eq. (20) with the sign of the wire's side). With
+//! the default `section.slip_limit`, `papailiou`, `theta_n = min(theta, pi - theta)` is the
+//! angle from the nearest neutral-axis crossing, where the slip starts, and the limit is
+//! symmetric about the extreme fibre (module `slip_limit`). With `paper`, `theta_n = theta`, the
+//! angle from the reference half of the neutral axis: the one with a non-negative z component
+//! (the +y half when `kappa_z = 0`). For planar bending this is the +z axis in both senses,
+//! which is exactly the SPEC 2 mirror convention; for general 3D bending it changes sides when
+//! `kappa_z` changes sign, so the limits of the (asymmetric) paper law jump there, while the
+//! symmetric limit does not depend on the choice of half. K_min and the axial stiffness are
+//! isotropic.
 
 mod options;
 mod slider;
+mod slip_limit;
 
 pub use options::SectionOptions;
 pub use slider::WireState;
 use slider::{SliderForce, slider};
+pub use slip_limit::SlipLimit;
 
 use crate::geometry::Strand;
 
@@ -87,11 +93,17 @@ struct LayerLaw {
     k: f64,
     /// 1 / k (1/N).
     inv_k: f64,
-    /// eta A_w E_w cos^2(alpha) (N): friction limit per unit strand strain and unit gain.
+    /// Projection times A_w E_w cos^2(alpha) (N): friction limit per unit strand strain and
+    /// unit gain; the projection is cos(alpha) or the paper's eta ([`SlipLimit::projection`]).
     cap_per_strain: f64,
     /// mu sin(alpha).
     capstan: f64,
-    /// cos^2(alpha).
+    /// Where the capstan angle starts (`section.slip_limit`).
+    slip_limit: SlipLimit,
+    /// Ratio of the slip force to the stick force at the `paper` law's switch, eq. (23):
+    /// cos^2(alpha) with the paper's slip limit, whose eq. (22b) projects the slip stress by
+    /// eta; 1 with the `papailiou` limit, whose cos(alpha) makes eq. (23) the point where
+    /// eqs. (22a) and (22b) meet.
     paper_factor: f64,
 }
 
@@ -99,8 +111,9 @@ impl LayerLaw {
     /// The critical curvature (1/m) a wire report gives for a wire at angle `theta` (rad,
     /// `sin_t` its sine) from the reference half of the neutral axis, with friction limit
     /// `scale gain` on the loaded side of its slider: `scale gain / (k factor R_w sin(theta))`.
-    /// The ratio gain/sin(theta) has the limit mu sin(alpha) on the neutral axis (theta -> 0)
-    /// and grows without bound as theta -> pi (none).
+    /// The ratio gain/sin(theta) has the limit mu sin(alpha) on the neutral axis (theta -> 0);
+    /// as theta -> pi it has the same limit with Papailiou's slip limit and grows without
+    /// bound with the paper's (none).
     fn critical_curvature(
         &self,
         scale: f64,
@@ -111,7 +124,7 @@ impl LayerLaw {
     ) -> Option<f64> {
         let ratio = if sin_t > 1e-12 {
             Some(gain / sin_t)
-        } else if theta < 0.5 * std::f64::consts::PI {
+        } else if self.slip_limit.angle(theta).0 < 0.5 * std::f64::consts::PI {
             Some(self.capstan)
         } else {
             None
@@ -137,6 +150,17 @@ impl LayerLaw {
             WireState::Stick
         }
     }
+
+    /// Capstan gains (stretched, shortened) at the angle `theta` in `[0, pi]` from the
+    /// reference half of the neutral axis, and d theta_n / d theta of the slip limit's angle.
+    #[inline(always)]
+    fn gains(&self, theta: f64) -> ([f64; 2], f64) {
+        let (t, dt) = self.slip_limit.angle(theta);
+        (
+            [(self.capstan * t).exp_m1(), -(-self.capstan * t).exp_m1()],
+            dt,
+        )
+    }
 }
 
 /// A section law built for one strand.
@@ -159,7 +183,8 @@ pub struct WireStation {
     position: [f64; 2],
     /// Lever R_w (cos phi, -sin phi) (m).
     lever: [f64; 2],
-    /// Planar capstan gains for theta = |phi|: (stretched, shortened).
+    /// Planar capstan gains for theta = |phi| through the slip limit's angle: (stretched,
+    /// shortened).
     gains: [f64; 2],
 }
 
@@ -301,9 +326,16 @@ impl SectionLaw {
                     radius: l.radius,
                     k,
                     inv_k: 1.0 / k,
-                    cap_per_strain: l.eta * w.area() * w.material.youngs_modulus * c2,
+                    cap_per_strain: options.slip_limit.projection(a)
+                        * w.area()
+                        * w.material.youngs_modulus
+                        * c2,
                     capstan: strand.friction() * a.sin(),
-                    paper_factor: c2,
+                    slip_limit: options.slip_limit,
+                    paper_factor: match options.slip_limit {
+                        SlipLimit::Paper => c2,
+                        SlipLimit::Papailiou => 1.0,
+                    },
                 }
             }),
         };
@@ -378,15 +410,11 @@ impl SectionLaw {
                 .map(|i| {
                     let phase = h.phase(i, x);
                     let (s, c) = phase.sin_cos();
-                    let theta = phase.abs();
                     WireStation {
                         phase,
                         position: [s, c],
                         lever: [law.radius * c, -law.radius * s],
-                        gains: [
-                            (law.capstan * theta).exp_m1(),
-                            -(-law.capstan * theta).exp_m1(),
-                        ],
+                        gains: law.gains(phase.abs()).0,
                     }
                 })
                 .collect(),
@@ -555,13 +583,11 @@ impl SectionLaw {
             let sin_t = (p[0] * b[1] - p[1] * b[0]).abs();
             // atan2 keeps full precision near the neutral axis, where acos(c) does not.
             let theta = sin_t.atan2(c);
-            let gains = [
-                (law.capstan * theta).exp_m1(),
-                -(-law.capstan * theta).exp_m1(),
-            ];
+            let (gains, dtheta_n) = law.gains(theta);
             let f = self.slide(law, i, lambda * knorm, scale, gains, slip, trial);
-            // d cap/d theta of the active side (non-zero only while slipping) ...
-            let a = law.capstan;
+            // d cap/d theta of the active side (non-zero only while slipping), through the
+            // slip limit's angle theta_n(theta) ...
+            let a = law.capstan * dtheta_n;
             let cap_theta =
                 scale * a * (f.d_cap_pos * (gains[0] + 1.0) + f.d_cap_neg * (1.0 - gains[1]));
             // ... times d theta/d kappa, from cos(theta) = s p.kappa/|kappa|:
@@ -728,10 +754,7 @@ impl SectionLaw {
                 let c = (p[0] * b[0] + p[1] * b[1]).clamp(-1.0, 1.0);
                 let sin_t = (p[0] * b[1] - p[1] * b[0]).abs();
                 let theta = sin_t.atan2(c);
-                let gains = [
-                    (law.capstan * theta).exp_m1(),
-                    -(-law.capstan * theta).exp_m1(),
-                ];
+                let gains = law.gains(theta).0;
                 let f = self.slide(law, i, lambda * knorm, scale, gains, slip, &mut []);
                 let stretched = if f.force != 0.0 {
                     f.force > 0.0
@@ -922,7 +945,7 @@ mod tests {
             for j in 0..400 {
                 let st = law.station(0.0137 * j as f64);
                 let eps = 1e-4 * ((j % 7) as f64 - 2.0);
-                let kappa = 0.05 * ((j * 37 % 101) as f64 - 50.0);
+                let kappa = 1e-3 * ((j * 37 % 101) as f64 - 50.0);
                 let slip: Vec<f64> = (0..n)
                     .map(|i| 1e-5 * (((i * 13 + j * 7) % 11) as f64 - 5.0))
                     .collect();

@@ -1,5 +1,6 @@
 //! Choices a scene makes about the section law beyond its kind (the scene's `section` object).
 
+use super::SlipLimit;
 use crate::bonded::StickStiffness;
 use crate::wire_bending::BaseStiffness;
 
@@ -14,15 +15,20 @@ pub struct SectionOptions {
     /// The helical wires' stick stiffness (`section.stick_stiffness`; default the bonded
     /// strand's, the plane section's K_stick times the rod model's stick factor).
     pub stick_stiffness: StickStiffness,
+    /// The slipping wires' friction limit (`section.slip_limit`; default Papailiou's, the
+    /// capstan gain from the nearest neutral-axis crossing on the axial projection cos(alpha)).
+    pub slip_limit: SlipLimit,
 }
 
 impl SectionOptions {
-    /// The paper's section: K_min with eta = cos^3(alpha) (eqs. (10), (11)) and the
-    /// plane-section stick stiffness (eq. (22a)).
+    /// The paper's section: K_min with eta = cos^3(alpha) (eqs. (10), (11)), the
+    /// plane-section stick stiffness (eq. (22a)) and the friction limit of eqs. (20), (22b)
+    /// as printed.
     pub fn paper() -> Self {
         SectionOptions {
             base_stiffness: BaseStiffness::Paper,
             stick_stiffness: StickStiffness::PlaneSection,
+            slip_limit: SlipLimit::Paper,
         }
     }
 }
