@@ -263,6 +263,47 @@ fn friction_softens_with_curvature_and_tension_delays_it() {
     );
 }
 
+/// The static solve reaches deep slip without halving a load step: at 10 N the Table 1 strand
+/// slips on about half its contacts from kappa = 0.26 1/m on, whose friction forces have no
+/// potential. When the line search accepted steps that lowered the total potential there, the
+/// step to 0.59 1/m took 780 Newton iterations (halving the increment) and 1.21 1/m failed
+/// after 8 halvings (scaled residual 0.59; `cargo xtask bonded --variant curve`); with
+/// residual descent each step converges within the 60 iterations allowed, at the first try.
+#[test]
+fn slipping_contacts_converge_without_halving() {
+    let s = table1();
+    let layer = s.layer().unwrap();
+    let w = &layer.spec.wire;
+    let wire_ea = w.material.youngs_modulus * w.area() * layer.lay_angle().cos().powi(2);
+    let test = BendingTest {
+        pitches: 3,
+        segments_per_pitch: 24,
+        tension: 10.0,
+        curvatures: vec![0.26, 0.59, 1.32],
+        contact: ContactOptions {
+            penetration: 1e-4,
+            stick_loss: 5e-3,
+            points_per_segment: 1,
+            reference_tension: Some(wire_ea * 2.2e-3),
+            ..Default::default()
+        },
+        friction: 0.3,
+        statics: StaticOptions {
+            load_steps: 1,
+            tolerance: 1e-8,
+            max_iterations: 60,
+            force_scale: Some(10.0),
+            ..Default::default()
+        },
+        max_halvings: 0,
+        core_springs: SpringScale::default(),
+        wire_springs: SpringScale::default(),
+    };
+    let curve = test.run(&s).expect("every step converges at the first try");
+    let last = curve.last().unwrap();
+    assert!(last.slip > 100, "deep slip: {} contacts slip", last.slip);
+}
+
 /// Axial force along each helical wire in the middle pitches against the all-stick value
 /// E_w A_w cos^2(alpha) kappa R_w sin(phi) (plus the mean).
 #[test]
