@@ -288,13 +288,7 @@ fn slipping_contacts_converge_without_halving() {
             ..Default::default()
         },
         friction: 0.3,
-        statics: StaticOptions {
-            load_steps: 1,
-            tolerance: 1e-8,
-            max_iterations: 60,
-            force_scale: Some(10.0),
-            ..Default::default()
-        },
+        statics: BendingTest::load_step_statics(10.0),
         max_halvings: 0,
         core_springs: SpringScale::default(),
         wire_springs: SpringScale::default(),
