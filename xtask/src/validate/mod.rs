@@ -478,6 +478,9 @@ impl SceneRun<'_> {
             if let (Some(eq), Some(n)) = (f.models.equivalent.as_mut(), v.elements) {
                 eq.elements = n as i64;
             }
+            if v.default_section {
+                f.section = None;
+            }
             if let Some(b) = &v.base_stiffness {
                 f.section
                     .get_or_insert_with(Default::default)

@@ -66,6 +66,11 @@ pub struct EquivalentVariant {
     /// `section.base_stiffness` (`costello`, `foti`, `papailiou`, `paper`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub base_stiffness: Option<String>,
+    /// Drop the scene's `section` options: the equivalent runs the project's default section
+    /// law (Costello's K_min, the bonded stick stiffness, Papailiou's slip limit), where the
+    /// scene names the paper's to reproduce its figures. `base_stiffness` still applies.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub default_section: bool,
 }
 
 /// One tension value the paper reports.
@@ -517,9 +522,18 @@ mod tests {
         };
         let v = f.equivalent.as_ref().unwrap();
         assert_eq!(
-            (v.elements, v.base_stiffness.as_deref()),
-            (Some(16), Some("costello"))
+            (v.elements, v.base_stiffness.as_deref(), v.default_section),
+            (Some(16), Some("costello"), false)
         );
+        let t = Tolerances::parse(
+            &with(r#""equivalent": {"default_section": true}"#),
+            &scenes(),
+        )
+        .unwrap();
+        let CheckSpec::EquivalentVsFine(f) = &t.scenes["a"].checks[1] else {
+            panic!("{:?}", t.scenes["a"].checks);
+        };
+        assert!(f.equivalent.as_ref().unwrap().default_section);
         let bad = with(r#""equivalent": {"base_stiffness": "cosine"}"#);
         let e = Tolerances::parse(&bad, &scenes()).unwrap_err().to_string();
         assert!(
