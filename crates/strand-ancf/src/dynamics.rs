@@ -19,9 +19,9 @@
 //! error. The non-potential work is kept apart from the dissipation so that energy a law puts
 //! in cannot pass for negative dissipation.
 //! Moving supports (`beam::supports`) add the work they do on the strand, which the total
-//! subtracts too. In 3D the non-potential work includes `energy_turn . d kappa`, the work of
-//! the wires' moment normal to the bending direction that the law does not apply (zero in
-//! planar motion).
+//! subtracts too. In 3D the non-potential work includes `energy_turn . d kappa`, the change of
+//! the `continuous` and `paper` laws' slip energy as the friction limits turn with the bending
+//! direction (zero in planar motion).
 
 use crate::band::{BandMatrix, BandSolver};
 use crate::beam::{Beam, BeamError, Evaluation, PointState, Tangent};
@@ -140,8 +140,8 @@ pub struct Energies {
     /// Work dissipated so far by slip (hysteretic law; never negative).
     pub dissipated: f64,
     /// Work done on the strand so far by the non-potential part of the section laws (the
-    /// `continuous` and `paper` laws' `energy_strain d eps`, and in 3D the turn term of every
-    /// law; positive: energy put in).
+    /// `continuous` and `paper` laws' `energy_strain d eps` and, in 3D, their turn term;
+    /// positive: energy put in).
     pub non_potential: f64,
     /// Work done on the strand by moving supports so far.
     pub supports: f64,
@@ -292,8 +292,8 @@ pub enum DynamicError {
 /// Work done on the strand over a step by the non-potential part of the stick/slip laws (J,
 /// positive when it puts energy in): `energy_strain d eps + energy_turn . d kappa` at every
 /// bending point between the states `old` and `new` (trapezoidal rule, SPEC 2). The second
-/// term, the work of the wires' moment normal to the bending direction that the law does not
-/// apply, is zero in planar motion.
+/// term, the change of the slip energy as the friction limits turn with the bending
+/// direction, is zero in planar motion.
 pub fn non_potential_work(old: &[PointState], new: &[PointState]) -> f64 {
     old.iter()
         .zip(new)

@@ -205,13 +205,22 @@ fn planar_and_spatial_agree_on_planar_scenes() {
         .sum::<f64>()
         .sqrt();
     println!("static tips {tips:?}: distance {d:.3e} m");
+    // The distance includes the spatial tip's z: the wires' moment out of the plane of
+    // bending (`SectionLaw::vector`), which the planar element leaves out, bends the spatial
+    // one out of its plane (measured 4.9e-10 m).
     assert!(d < 1e-8, "planar and spatial statics differ by {d} m");
-    assert_eq!(tips[1][2], 0.0);
 
-    // Dynamics: the Table 1 pinned pendulum with the hysteretic law, 0.2 s.
+    // Dynamics: the Table 1 pinned pendulum with the hysteretic law, 0.2 s. Here the wires
+    // slip, and their moment out of the plane of bending moves the spatial element out of
+    // it: the runs differ by that physics, which the planar element leaves out; it must stay
+    // below the integrator's own error, the planar run's change when the step is halved.
     let s1 = strand(0.4, 2.0e8, 7801.0);
     let mut tips = Vec::new();
-    for element in [ElementKind::Planar, ElementKind::Spatial] {
+    for (element, step) in [
+        (ElementKind::Planar, 5e-4),
+        (ElementKind::Spatial, 5e-4),
+        (ElementKind::Planar, 2.5e-4),
+    ] {
         let b = beam_with(
             &s1,
             LawKind::Hysteretic,
@@ -223,7 +232,7 @@ fn planar_and_spatial_agree_on_planar_scenes() {
         let mut opts = DynamicOptions::new(
             0.2,
             Scheme::GeneralizedAlpha {
-                step: 5e-4,
+                step,
                 spectral_radius: 1.0,
             },
             0.1,
@@ -235,10 +244,17 @@ fn planar_and_spatial_agree_on_planar_scenes() {
         let r = run_dynamic(&b, &opts, &mut |_| {}).unwrap();
         tips.push(b.sample(&r.q, b.length()).0);
     }
-    let d = (0..3)
-        .map(|c| (tips[0][c] - tips[1][c]).powi(2))
-        .sum::<f64>()
-        .sqrt();
-    println!("dynamic tips {tips:?}: distance {d:.3e} m");
-    assert!(d < 1e-8, "planar and spatial dynamics differ by {d} m");
+    let dist = |a: [f64; 3], b: [f64; 3]| (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt();
+    let d = dist(tips[0], tips[1]);
+    let step_error = dist(tips[0], tips[2]);
+    println!(
+        "dynamic tips {tips:?}: planar to spatial {d:.3e} m ({:.3e} m out of the plane), \
+         h to h/2 {step_error:.3e} m",
+        tips[1][2]
+    );
+    assert!(tips[1][2] != 0.0, "no moment out of the plane");
+    assert!(
+        d < step_error,
+        "planar and spatial dynamics differ by {d} m, the step error is {step_error} m"
+    );
 }

@@ -219,12 +219,11 @@ proptest! {
         prop_assert!((ra.energy - rb.energy).abs() <= 1e-12 * ra.energy.abs().max(1e-300));
     }
 
-    /// Analytic tangents dM/dkappa and dM/deps agree with central differences away from
-    /// switch points, planar and vector forms.
+    /// Analytic tangents dM/dkappa and dM/deps of the planar law agree with central
+    /// differences away from switch points.
     #[test]
     fn tangents_match_finite_differences(
         s in strand(), eps in 1e-4..1e-2f64, x in 0.0..1.0f64, u in 0.01..20.0f64,
-        dir in 0.0..(2.0 * PI),
         kind in prop::sample::select(vec![LawKind::Continuous, LawKind::Paper, LawKind::Hysteretic, LawKind::Constant]),
     ) {
         let law = SectionLaw::new(&s, kind);
@@ -245,56 +244,178 @@ proptest! {
         prop_assert!((fd_e - r.moment_strain).abs() <= 1e-6 * (r.moment.abs() / eps + 1e-300),
             "dM/deps {} fd {}", r.moment_strain, fd_e);
 
-        // Vector form along a general direction, away from kappa_z = 0 where the neutral
-        // axis reference changes side.
+    }
+
+    /// The vector form's analytic tangents dM/dkappa (both directions, with the friction
+    /// limits turning with the bending direction) and dM/deps agree with central
+    /// differences away from switch points: both slip limits, and for the hysteretic law
+    /// from a committed slip state left by bending in another direction.
+    #[test]
+    fn vector_tangents_match_finite_differences(
+        s in strand(), eps in 1e-4..1e-2f64, x in 0.0..1.0f64, u in 0.01..20.0f64,
+        dir in 0.0..(2.0 * PI), u0 in 0.0..20.0f64, dir0 in 0.0..(2.0 * PI),
+        kind in prop::sample::select(vec![LawKind::Continuous, LawKind::Paper, LawKind::Hysteretic, LawKind::Constant]),
+        limit in prop::sample::select(SlipLimit::ALL.to_vec()),
+    ) {
+        let options = SectionOptions { slip_limit: limit, ..Default::default() };
+        let law = SectionLaw::with_options(&s, kind, &options);
+        let st = law.station(x);
+        let k = u * curvature_scale(&s, eps);
+        // The paper's limit jumps where kappa_z changes sign (the neutral axis reference
+        // changes side).
+        prop_assume!(limit == SlipLimit::Papailiou || dir.sin().abs() > 1e-2);
+        let mut trial = vec![0.0; law.state_len()];
+        let k0 = u0 * curvature_scale(&s, eps);
+        law.vector(&st, eps, [k0 * dir0.cos(), k0 * dir0.sin()], &vec![0.0; law.state_len()], &mut trial);
+        let slip = trial.clone();
         let kv = [k * dir.cos(), k * dir.sin()];
-        prop_assume!(dir.sin().abs() > 1e-2);
+        let hk = 1e-6 * k;
+        let he = 1e-6 * eps;
+        let scale = s.max_bending_stiffness(BaseStiffness::default()) * 2.0;
         let v = law.vector(&st, eps, kv, &slip, &mut trial);
         for c in 0..2 {
             let mut kp = kv;
             let mut km = kv;
             kp[c] += hk;
             km[c] -= hk;
-            let mp = law.vector(&st, eps, kp, &slip, &mut trial).moment;
-            let mm = law.vector(&st, eps, km, &slip, &mut trial).moment;
+            let p = law.vector(&st, eps, kp, &slip, &mut trial);
+            let m = law.vector(&st, eps, km, &slip, &mut trial);
             // Skip if the finite difference straddles a switch.
-            let sp = law.vector(&st, eps, kp, &slip, &mut trial).slipping;
-            let sm = law.vector(&st, eps, km, &slip, &mut trial).slipping;
-            prop_assume!(sp == v.slipping && sm == v.slipping);
+            prop_assume!(p.slipping == v.slipping && m.slipping == v.slipping);
             for a in 0..2 {
-                let fd = (mp[a] - mm[a]) / (2.0 * hk);
+                let fd = (p.moment[a] - m.moment[a]) / (2.0 * hk);
                 prop_assert!((fd - v.moment_curvature[a][c]).abs() <= 1e-5 * scale,
                     "dM{a}/dk{c} {} fd {}", v.moment_curvature[a][c], fd);
             }
         }
-        let mp = law.vector(&st, eps + he, kv, &slip, &mut trial).moment;
-        let mm = law.vector(&st, eps - he, kv, &slip, &mut trial).moment;
+        let p = law.vector(&st, eps + he, kv, &slip, &mut trial);
+        let m = law.vector(&st, eps - he, kv, &slip, &mut trial);
+        prop_assume!(p.slipping == v.slipping && m.slipping == v.slipping);
         for a in 0..2 {
-            let fd = (mp[a] - mm[a]) / (2.0 * he);
+            let fd = (p.moment[a] - m.moment[a]) / (2.0 * he);
             prop_assert!((fd - v.moment_strain[a]).abs() <= 1e-6 * (k * scale / eps),
                 "dM{a}/deps {} fd {}", v.moment_strain[a], fd);
         }
     }
 
-    /// The vector form with kappa_y = 0 is the planar form.
+    /// The vector form with kappa_y = 0: its z components (moment, dM_z/dkappa_z, dM_z/deps),
+    /// energy, slip count and trial state are the planar law's bit for bit, also from a
+    /// committed slip state; its y moment is the wires' forces times their y levers.
     #[test]
     fn vector_form_reduces_to_planar(
         s in strand(), eps in -1e-3..1e-2f64, x in 0.0..1.0f64, k in -20.0..20.0f64,
+        k0 in -20.0..20.0f64,
         kind in prop::sample::select(vec![LawKind::Continuous, LawKind::Paper, LawKind::Hysteretic, LawKind::Constant]),
+        limit in prop::sample::select(SlipLimit::ALL.to_vec()),
+    ) {
+        let options = SectionOptions { slip_limit: limit, ..Default::default() };
+        let law = SectionLaw::with_options(&s, kind, &options);
+        let st = law.station(x);
+        let scale = curvature_scale(&s, eps);
+        let k = k * scale;
+        let mut trial = vec![0.0; law.state_len()];
+        law.planar(&st, eps, k0 * scale, &vec![0.0; law.state_len()], &mut trial);
+        let slip = trial.clone();
+        let mut tv = trial.clone();
+        let p = law.planar(&st, eps, k, &slip, &mut trial);
+        let v = law.vector(&st, eps, [0.0, k], &slip, &mut tv);
+        prop_assert_eq!(p.moment, v.moment[1]);
+        prop_assert_eq!(p.moment_curvature, v.moment_curvature[1][1]);
+        prop_assert_eq!(p.moment_strain, v.moment_strain[1]);
+        prop_assert_eq!(p.energy, v.energy);
+        prop_assert_eq!(p.energy_strain, v.energy_strain);
+        prop_assert_eq!(p.slip_work, v.slip_work);
+        prop_assert_eq!(p.slipping, v.slipping);
+        prop_assert_eq!(&trial, &tv);
+        // In a fixed plane no energy turns.
+        prop_assert_eq!(v.energy_turn[1], 0.0);
+    }
+
+    /// The moment vector, y component included, and `energy_turn` against the stored energy:
+    /// at fixed strain and slip, d E/d kappa = M + energy_turn (central differences) for the
+    /// `continuous` and `paper` laws, and d E/d kappa = M for the `hysteretic` law from a
+    /// committed slip state while every wire sticks (its slip energy is booked as slip work).
+    #[test]
+    fn moment_and_energy_turn_are_the_energy_gradient(
+        s in strand(), eps in 1e-4..1e-2f64, x in 0.0..1.0f64, u in 0.01..20.0f64,
+        dir in 0.0..(2.0 * PI), u0 in 0.0..20.0f64, dir0 in 0.0..(2.0 * PI),
+        kind in prop::sample::select(vec![LawKind::Continuous, LawKind::Paper, LawKind::Hysteretic]),
+        limit in prop::sample::select(SlipLimit::ALL.to_vec()),
+    ) {
+        let options = SectionOptions { slip_limit: limit, ..Default::default() };
+        let law = SectionLaw::with_options(&s, kind, &options);
+        let st = law.station(x);
+        prop_assume!(limit == SlipLimit::Papailiou || dir.sin().abs() > 1e-2);
+        let (k, k0) = (u * curvature_scale(&s, eps), u0 * curvature_scale(&s, eps));
+        let mut trial = vec![0.0; law.state_len()];
+        law.vector(&st, eps, [k0 * dir0.cos(), k0 * dir0.sin()], &vec![0.0; law.state_len()], &mut trial);
+        let slip = trial.clone();
+        let kv = [k * dir.cos(), k * dir.sin()];
+        let v = law.vector(&st, eps, kv, &slip, &mut trial);
+        prop_assume!(kind != LawKind::Hysteretic || v.slipping == 0);
+        let hk = 1e-6 * k;
+        let scale = s.max_bending_stiffness(BaseStiffness::default()) * 2.0 * k;
+        for c in 0..2 {
+            let mut kp = kv;
+            let mut km = kv;
+            kp[c] += hk;
+            km[c] -= hk;
+            let p = law.vector(&st, eps, kp, &slip, &mut trial);
+            let m = law.vector(&st, eps, km, &slip, &mut trial);
+            prop_assume!(p.slipping == v.slipping && m.slipping == v.slipping);
+            let fd = (p.energy - m.energy) / (2.0 * hk);
+            let want = v.moment[c] + v.energy_turn[c];
+            // The difference of two energies loses their round-off.
+            let round = 1e-15 * v.energy.abs() / hk;
+            prop_assert!((fd - want).abs() <= 1e-6 * scale + round,
+                "dE/dk{c} {fd} against M {} + turn {}", v.moment[c], v.energy_turn[c]);
+        }
+        // The turn term is normal to the bending direction.
+        let along = v.energy_turn[0] * kv[0] + v.energy_turn[1] * kv[1];
+        prop_assert!(along.abs() <= 1e-9 * scale * k);
+        if kind == LawKind::Hysteretic {
+            prop_assert_eq!(v.energy_turn, [0.0; 2]);
+        }
+    }
+
+    /// With every wire sticking the vector tangent is symmetric and positive definite, at
+    /// least K_min in every direction (`K_min I + sum_i k l_i l_i^T`), and for m >= 3 evenly
+    /// spaced wires isotropic: the all-stick stiffness.
+    #[test]
+    fn stick_tangent_is_symmetric_positive_definite(
+        s in strand(), eps in 1e-4..1e-2f64, x in 0.0..1.0f64, u in 0.0..1.0f64,
+        dir in 0.0..(2.0 * PI),
+        kind in prop::sample::select(vec![LawKind::Continuous, LawKind::Paper, LawKind::Hysteretic]),
     ) {
         let law = SectionLaw::new(&s, kind);
         let st = law.station(x);
-        let k = k * curvature_scale(&s, eps);
-        let mut trial = vec![0.0; law.state_len()];
+        // Below every wire's critical curvature in this direction.
+        let kv0 = [dir.cos(), dir.sin()];
+        let kc = law.vector_wires(&st, eps, kv0, &[]).iter()
+            .filter_map(|w| w.critical_curvature).fold(f64::INFINITY, f64::min);
+        let k = u * kc.min(1e3);
+        let kv = [k * kv0[0], k * kv0[1]];
         let slip = vec![0.0; law.state_len()];
-        let p = law.planar(&st, eps, k, &slip, &mut trial);
-        let v = law.vector(&st, eps, [0.0, k], &slip, &mut trial);
-        let tol = |a: f64| 1e-12 * a.abs().max(1e-300);
-        prop_assert!((p.moment - v.moment[1]).abs() <= tol(p.moment));
-        prop_assert!(v.moment[0].abs() <= tol(p.moment) + 1e-300);
-        prop_assert!((p.moment_curvature - v.moment_curvature[1][1]).abs() <= tol(p.moment_curvature));
-        prop_assert!((p.moment_strain - v.moment_strain[1]).abs() <= tol(p.moment_strain) + 1e-300);
-        prop_assert!((p.energy - v.energy).abs() <= tol(p.energy));
+        let mut trial = slip.clone();
+        let r = law.vector(&st, eps, kv, &slip, &mut trial);
+        prop_assume!(r.slipping == 0);
+        let t = r.moment_curvature;
+        let kmin = law.base_bending_stiffness();
+        prop_assert_eq!(t[0][1], t[1][0]);
+        let (tr, det) = (t[0][0] + t[1][1], t[0][0] * t[1][1] - t[0][1] * t[1][0]);
+        // Smallest eigenvalue.
+        let lmin = 0.5 * tr - (0.25 * (t[0][0] - t[1][1]).powi(2) + t[0][1] * t[1][0]).sqrt();
+        prop_assert!(det > 0.0 && lmin >= kmin * (1.0 - 1e-12), "{t:?} K_min {kmin}");
+        if s.layer().unwrap().wires() >= 3 {
+            let want = law.stick_bending_stiffness();
+            prop_assert!((t[0][0] - want).abs() <= 1e-12 * want && (t[1][1] - want).abs() <= 1e-12 * want);
+            prop_assert!(t[0][1].abs() <= 1e-12 * want);
+        }
+        // The moment is the tangent times the curvature (linear while stuck from straight).
+        for a in 0..2 {
+            let m = t[a][0] * kv[0] + t[a][1] * kv[1];
+            prop_assert!((r.moment[a] - m).abs() <= 1e-12 * (t[0][0] + t[1][1]) * k + 1e-300);
+        }
     }
 
     /// Hysteretic law along a random curvature path: dissipation never negative, each wire's
@@ -666,9 +787,10 @@ fn non_potential_work_closes_the_energy_balance() {
 /// In 3D the bending direction turns: along a path in (eps, kappa_y, kappa_z) the work of the
 /// section forces equals the change of stored energy plus the slip work (hysteretic law,
 /// committed at every step) minus the non-potential work `energy_strain d eps + energy_turn .
-/// d kappa`. Without the last term the balance is off by the work the moment (parallel to the
-/// curvature) does not do when the wires' levers and friction limits turn with the bending
-/// direction (checked too), so the test fails if `energy_turn` is wrong or missing. Both
+/// d kappa`. Without the last term the balance of the `continuous` law is off by the change of
+/// its slip energy when the friction limits turn with the bending direction (checked too), so
+/// the test fails if `energy_turn` is wrong or missing; the `hysteretic` law books that change
+/// as slip work and has no turn term. Both
 /// slip limits: the paper's (smooth in the bending direction) and Papailiou's, whose limit
 /// has a kink where a wire passes the extreme fibre.
 #[test]
@@ -744,7 +866,8 @@ fn non_potential_work_closes_the_energy_balance_in_3d() {
                 "{kind} {limit} x {x}: work {work} stored {stored} slip {slip_work} \
                  non-potential {non_potential} turn {turn}"
             );
-            if kind == LawKind::Constant {
+            if matches!(kind, LawKind::Constant | LawKind::Hysteretic) {
+                // No stored energy that depends on a friction limit.
                 assert_eq!(turn, 0.0);
             } else if kind != LawKind::Paper {
                 // The turn term is far above the tolerance on this path: the balance needs it.
@@ -802,5 +925,101 @@ fn vector_wire_report_follows_the_bending_direction() {
             assert_eq!(a.state, b.state);
             assert!((a.critical_curvature.unwrap() - b.critical_curvature.unwrap()).abs() < 1e-9);
         }
+    }
+}
+
+/// After slip in one plane a small curvature out of that plane meets a non-negative
+/// stiffness: the Table 1 strand (x = 0.013 m, strain 1e-3) bent in the z plane to 4 1/m,
+/// where its wires slip, then (hysteretic law) unloaded to 0.001 1/m, where they slip back,
+/// and bent again to 0.002 and 0.003 1/m, where they stick with residual forces that oppose
+/// the curvature. A stuck wire keeps its force in the section frame, so `dM_y/dkappa_y` is
+/// `K_min` plus the stuck wires' `k l_iy^2`; while the wires slip forward their friction
+/// limits turn with the bending direction and add a positive stiffness. Checked on the
+/// analytic tangent and on the secant over an out-of-plane curvature small enough to leave
+/// every wire's state as it is. A moment kept parallel to the curvature turns the residual
+/// moment `m` of the stuck wires with the bending direction, `dM_y/dkappa_y = K_min +
+/// m/|kappa|`, negative at these states. (While the wires slip back, their limits turn with
+/// the bending direction too, against the curvature: printed, not asserted; the README's
+/// finding.)
+#[test]
+fn out_of_plane_stiffness_after_slip_is_not_negative() {
+    let s = Strand::new(common::table1()).unwrap();
+    for kind in [LawKind::Continuous, LawKind::Paper, LawKind::Hysteretic] {
+        let law = SectionLaw::new(&s, kind);
+        let kmin = law.base_bending_stiffness();
+        let st = law.station(0.013);
+        let eps = 1e-3;
+        let mut slip = vec![0.0; law.state_len()];
+        let mut trial = slip.clone();
+        // Loaded to 4 1/m in steps of 0.01 1/m, back to 0.001 and up to 0.003 in steps of
+        // 0.001 1/m, the state committed at every step.
+        let n = |a: f64, b: f64, h: f64| ((b - a) / h).abs().round() as usize;
+        let path: Vec<f64> = (1..=400)
+            .map(|i| 0.01 * i as f64)
+            .chain((1..=n(4.0, 0.001, 0.001)).map(|i| 4.0 - 0.001 * i as f64))
+            .chain([0.002, 0.003])
+            .collect();
+        let mut checked = 0;
+        for (i, &k) in path.iter().enumerate() {
+            // The step from the state committed at the last curvature: perturbed below.
+            let r = law.vector(&st, eps, [0.0, k], &slip, &mut trial);
+            let committed = slip.clone();
+            slip.copy_from_slice(&trial);
+            let slip = &committed;
+            let t = r.moment_curvature[0][0];
+            // Loaded (every law); bent again after slipping back (the hysteretic law's
+            // history).
+            let loaded = i == 399;
+            let again = i + 2 >= path.len();
+            let back = i > 399 && [0.2, 0.01, 0.001].iter().any(|a| (k - a).abs() < 1e-9);
+            if kind == LawKind::Hysteretic && back && !again {
+                println!(
+                    "slipping back at {k:.3} 1/m: {} wires slip, dM_y/dkappa_y {t:.3e} N m^2, \
+                     M_z {:.3e} N m",
+                    r.slipping, r.moment[1]
+                );
+            }
+            if !(loaded || (again && kind == LawKind::Hysteretic)) {
+                continue;
+            }
+            if loaded {
+                assert_eq!(r.slipping, 6, "{kind}: not every wire slips at 4 1/m");
+            } else {
+                // Stuck, with the layer's residual moment against the curvature.
+                assert_eq!(r.slipping, 0, "{kind} at {k}");
+                assert!(r.moment[1] < 0.0, "{kind} at {k}: {:?}", r.moment);
+                assert!(t >= kmin, "{kind} at {k}: {t}");
+            }
+            assert!(t >= 0.0, "{kind} at {k} 1/m: dM_y/dkappa_y {t}");
+            let states = |kv| -> Vec<WireState> {
+                law.vector_wires(&st, eps, kv, slip)
+                    .iter()
+                    .map(|w| w.state)
+                    .collect()
+            };
+            let before = states([0.0, k]);
+            // The secant over kappa_y = d, halved until no wire changes state.
+            let mut d = 1e-3 * k;
+            let secant = loop {
+                let mut tp = slip.clone();
+                let p = law.vector(&st, eps, [d, k], slip, &mut tp);
+                if states([d, k]) == before {
+                    break (p.moment[0] - r.moment[0]) / d;
+                }
+                d *= 0.5;
+                assert!(
+                    d > 1e-12 * k,
+                    "{kind} at {k} 1/m: every kappa_y changes a state"
+                );
+            };
+            println!("{kind} at {k:.3} 1/m: dM_y/dkappa_y {t:.3e}, secant {secant:.3e} N m^2");
+            assert!(
+                secant >= 0.0 && (secant - t).abs() <= 1e-3 * (t + kmin),
+                "{kind} at {k} 1/m: secant {secant} tangent {t}"
+            );
+            checked += 1;
+        }
+        let want = if kind == LawKind::Hysteretic { 3 } else { 1 };
+        assert_eq!(checked, want, "{kind}");
     }
 }

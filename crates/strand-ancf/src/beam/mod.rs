@@ -256,8 +256,8 @@ pub struct PointState {
     pub moment: f64,
     /// d(stored energy)/d eps at fixed curvature (J/m), see `SectionResponse::energy_strain`.
     pub energy_strain: f64,
-    /// The wires' moment normal to the bending direction `(y, z)` (N m), see
-    /// `SectionResponse::energy_turn`; zero for the planar element.
+    /// The stored energy's change with the bending direction through the friction limits
+    /// `(y, z)` (N m), see `SectionResponse::energy_turn`; zero for the planar element.
     pub energy_turn: [f64; 2],
     /// Quadrature weight (m).
     pub weight: f64,

@@ -114,9 +114,9 @@ impl Beam {
                 if kind == Tangent::AllStick {
                     dm_dkappa = [[bp.stick, 0.0], [0.0, bp.stick]];
                 } else if !exact {
-                    // Without the coupling of the two bending directions through the law
-                    // (the friction limits turning with the bending direction): not symmetric,
-                    // and zero one way for planar bending, so that a planar scene stays planar.
+                    // Without the coupling of the two bending directions through the law (the
+                    // friction limits turning with the bending direction, not symmetric, and
+                    // the stuck wires' k l_y l_z, which cancel for three or more wires).
                     (dm_dkappa[0][1], dm_dkappa[1][0]) = (0.0, 0.0);
                 }
                 let sec = SpatialSection {

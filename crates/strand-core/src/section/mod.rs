@@ -12,9 +12,16 @@
 //! (37). The curvature vector `kappa = (kappa_y, kappa_z)` holds the bending curvatures about
 //! y and z, so the bending strain of a fibre at (y, z) is `z kappa_y - y kappa_z`, and wire `i`
 //! has the lever `l_i = R_w (cos phi_i, -sin phi_i)`: its bending strain is `e_i = l_i . kappa`.
-//! Lever arms are measured against the bending direction: the wire's force `F_i` adds
-//! `F_i (l_i . kappa_hat)` to the moment along `kappa_hat = kappa/|kappa|`, so the moment is
-//! parallel to the curvature (the planar law applied in the plane of bending).
+//! The wire's slider force `F_i` (module `slider`) acts through the lever vector, so the
+//! section moment is `M = K_min kappa + sum_i F_i l_i`. A stuck wire adds `k l_i l_i^T` to the
+//! tangent (symmetric, positive); a wire that has slipped keeps its force, and so its moment
+//! `F_i l_i`, fixed in the section frame when the bending direction turns, as the wire on the
+//! core does. Only the friction limits depend on the bending direction (through each wire's
+//! angle from the neutral axis, below). For planar bending (`kappa_y = 0`) the z component is
+//! the planar law bit for bit; the y component `sum_i F_i l_iy` is zero while every wire
+//! sticks (m >= 3 wires evenly spaced) and otherwise a moment out of the plane of bending that
+//! changes sign along the pitch (period pitch/m), with zero mean over a pitch for a strand bent
+//! from straight: the planar element leaves it out.
 //!
 //! A planar scene moves in the global XY plane with z = global Z; the signed planar curvature
 //! `kappa = (r' x r'')_Z / |r'|^2` (per reference length) is `kappa_z`. Bending with the convex side toward +y
@@ -23,16 +30,19 @@
 //!
 //! The friction limit of a wire grows with its angle from the neutral axis through the capstan
 //! gain of eq. (20): `exp(mu theta_n sin(alpha)) - 1` for a stretched wire and `1 - exp(-mu
-//! theta_n sin(alpha))` for a shortened one (eq. (20) with the sign of the wire's side). With
-//! the default `section.slip_limit`, `papailiou`, `theta_n = min(theta, pi - theta)` is the
-//! angle from the nearest neutral-axis crossing, where the slip starts, and the limit is
-//! symmetric about the extreme fibre (module `slip_limit`). With `paper`, `theta_n = theta`, the
-//! angle from the reference half of the neutral axis: the one with a non-negative z component
-//! (the +y half when `kappa_z = 0`). For planar bending this is the +z axis in both senses,
-//! which is exactly the SPEC 2 mirror convention; for general 3D bending it changes sides when
-//! `kappa_z` changes sign, so the limits of the (asymmetric) paper law jump there, while the
-//! symmetric limit does not depend on the choice of half. K_min and the axial stiffness are
-//! isotropic.
+//! theta_n sin(alpha))` for a shortened one (eq. (20) with the sign of the wire's side). The
+//! neutral axis is the line along `kappa` (where `e_i = 0`); `theta` is the wire's angle from
+//! its reference half `b`, the half with a non-negative z component (the +y half when `kappa_z
+//! = 0`), so `theta = |phi|` in planar bending (the SPEC 2 mirror convention). With the default
+//! `section.slip_limit`, `papailiou`, `theta_n = min(theta, pi - theta)` is the angle from the
+//! nearest neutral-axis crossing, where the slip starts, and the limit is symmetric about the
+//! extreme fibre (module `slip_limit`). With `paper`, `theta_n = theta`: the limits of this
+//! asymmetric law change sides, and jump, where `kappa_z` changes sign, while the symmetric
+//! limit does not depend on the choice of half. When the bending direction turns, a slipping
+//! wire's limit turns with it: the tangent holds `l_i (d cap_i / d theta_i) (d theta_i / d
+//! kappa)`, and the `continuous` and `paper` laws, whose slip energy depends on the limit,
+//! change their stored energy without work of the moment (`SectionResponse::energy_turn`). K_min
+//! and the axial stiffness are isotropic.
 
 mod options;
 mod slider;
@@ -232,14 +242,14 @@ pub struct SectionResponse {
     pub energy_strain: f64,
     /// The gradient of the stored energy with respect to the curvature vector at fixed strain
     /// and slip, minus the moment (N m, section frame): normal to the bending direction. The
-    /// law applies the planar law in the plane of bending ([`SectionLaw::vector`]), so its
-    /// moment is parallel to the curvature, while the wires' levers `l_i` and, for a slipping
-    /// wire of the `continuous` and `paper` laws, the friction limits (through the wire's
-    /// angle from the neutral axis) turn with the bending direction: when it turns, the stored
-    /// energy changes by `energy_turn . d kappa` without work of the moment. Over a curvature
-    /// increment the section dissipates `-energy_turn . d kappa` (non-potential work, like
+    /// friction limit of a slipping wire depends on its angle from the neutral axis, which
+    /// turns with the bending direction; the `continuous` and `paper` laws store an energy
+    /// that depends on the limit, so when the direction turns their stored energy changes by
+    /// `energy_turn . d kappa` without work of the moment. Over a curvature increment the
+    /// section dissipates `-energy_turn . d kappa` (non-potential work, like
     /// `energy_strain`). Zero for bending in a fixed plane, where `d kappa` is along the
-    /// bending direction.
+    /// bending direction, for a section whose wires all stick, and for the `hysteretic` law,
+    /// which books the energy change of a moving limit as slip work.
     pub energy_turn: [f64; 2],
     /// Work dissipated by slip from the committed state to this trial (J/m; hysteretic law).
     pub slip_work: f64,
@@ -530,11 +540,13 @@ impl SectionLaw {
     /// Evaluates the law for a curvature vector `kappa = (kappa_y, kappa_z)` (1/m) in the
     /// section frame at strain `eps`; `slip` and `trial` as for [`Self::planar`].
     ///
-    /// The moment is parallel to the curvature: each wire's force acts through its lever
-    /// measured against the bending direction, `lambda_i = l_i . kappa/|kappa|`, so
-    /// `M = K_min kappa + (sum_i F_i lambda_i) kappa/|kappa|`, the planar law applied in the
-    /// plane of bending. With `kappa_y = 0` it agrees with [`Self::planar`]; at zero curvature
-    /// the tangent is the planar one, applied isotropically.
+    /// Each wire's slider works on its bending strain `e_i = l_i . kappa` and its force acts
+    /// through its lever vector: `M = K_min kappa + sum_i F_i l_i` (module docs). The tangent
+    /// is `K_min I + sum_i l_i (dF_i/de_i l_i + dF_i/dcap_i dcap_i/dkappa)`: the stick part
+    /// is symmetric and positive definite, the second term is the friction limit of a
+    /// slipping wire turning with the bending direction. With `kappa_y = 0` the z components
+    /// of the moment, its tangent `dM_z/dkappa_z` and `dM_z/deps`, and the energy are those of
+    /// [`Self::planar`] bit for bit.
     pub fn vector(
         &self,
         st: &Station,
@@ -544,92 +556,69 @@ impl SectionLaw {
         trial: &mut [f64],
     ) -> SectionResponse {
         let kb = self.base_bending;
-        let knorm = kappa[0].hypot(kappa[1]);
         let mut r = SectionResponse {
             axial_force: self.axial_stiffness * eps,
             axial_stiffness: self.axial_stiffness,
             moment: [kb * kappa[0], kb * kappa[1]],
             moment_curvature: [[kb, 0.0], [0.0, kb]],
             moment_strain: [0.0; 2],
-            energy: 0.5 * self.axial_stiffness * eps * eps + 0.5 * kb * knorm * knorm,
+            // Summed as in `planar_linear`, the out-of-plane term last.
+            energy: 0.5 * self.axial_stiffness * eps * eps
+                + 0.5 * kb * kappa[1] * kappa[1]
+                + 0.5 * kb * kappa[0] * kappa[0],
             energy_strain: 0.0,
             energy_turn: [0.0; 2],
             slip_work: 0.0,
             slipping: 0,
         };
         let Some(law) = self.layer else { return r };
-        if knorm == 0.0 {
-            let p = self.planar(st, eps, 0.0, slip, trial);
-            r.moment_curvature = [[p.moment_curvature, 0.0], [0.0, p.moment_curvature]];
-            r.energy = p.energy;
-            return r;
-        }
         let (scale, dscale) = self.cap_scale(eps);
-        let kh = [kappa[0] / knorm, kappa[1] / knorm];
-        let b = neutral_axis(kappa);
-        // Sign relating the neutral-axis reference b to the bending direction kh.
-        let s = if b[0] * kh[0] + b[1] * kh[1] >= 0.0 {
-            1.0
-        } else {
-            -1.0
-        };
-        let (mut m, mut dm, mut dm_deps) = (0.0, [0.0; 2], 0.0);
+        let dir = BendingDirection::of(kappa);
         for (i, w) in st.wires.iter().enumerate() {
             let l = w.lever;
-            let lambda = l[0] * kh[0] + l[1] * kh[1];
-            // Angle theta from the reference half of the neutral axis, and d theta/d kappa.
-            let p = w.position;
-            let c = (p[0] * b[0] + p[1] * b[1]).clamp(-1.0, 1.0);
-            let sin_t = (p[0] * b[1] - p[1] * b[0]).abs();
-            // atan2 keeps full precision near the neutral axis, where acos(c) does not.
-            let theta = sin_t.atan2(c);
-            let (gains, dtheta_n) = law.gains(theta);
-            let f = self.slide(law, i, lambda * knorm, scale, gains, slip, trial);
-            // d cap/d theta of the active side (non-zero only while slipping), through the
-            // slip limit's angle theta_n(theta) ...
-            let a = law.capstan * dtheta_n;
-            let cap_theta =
-                scale * a * (f.d_cap_pos * (gains[0] + 1.0) + f.d_cap_neg * (1.0 - gains[1]));
-            // ... times d theta/d kappa, from cos(theta) = s p.kappa/|kappa|:
-            // d theta/d kappa = -s (p - c b) / (|kappa| sin(theta)), where (p - c b)/sin(theta)
-            // is a unit vector; it enters the moment times the lever lambda.
-            let turn = if cap_theta != 0.0 && sin_t > 0.0 {
-                // |lambda| = R_w sin(theta): take the bounded ratio first.
-                let f = -s * cap_theta * (lambda / sin_t) / knorm;
-                [f * (p[0] - c * b[0]), f * (p[1] - c * b[1])]
-            } else {
-                [0.0; 2]
-            };
-            // The stored energy's dependence on the friction limit of the active side, turned
-            // by the bending direction: d E/d cap d cap/d theta d theta/d kappa.
-            let cap_energy =
-                scale * a * (f.d_cap_pos * (gains[0] + 1.0) - f.d_cap_neg * (1.0 - gains[1]));
-            let limit_turn = if f.d_energy_cap != 0.0 && cap_energy != 0.0 && sin_t > 0.0 {
-                let g = -s * f.d_energy_cap * cap_energy / (sin_t * knorm);
-                [g * (p[0] - c * b[0]), g * (p[1] - c * b[1])]
-            } else {
-                [0.0; 2]
-            };
-            for j in 0..2 {
-                let dlambda = (l[j] - lambda * kh[j]) / knorm;
-                dm[j] += f.d_strain * l[j] * lambda + turn[j] + f.force * dlambda;
-                r.energy_turn[j] += f.force * (l[j] - lambda * kh[j]) + limit_turn[j];
+            let theta = dir.wire_angle(w.phase);
+            let (gains, dtheta_n) = law.gains(theta.abs());
+            let f = self.slide(
+                law,
+                i,
+                l[0] * kappa[0] + l[1] * kappa[1],
+                scale,
+                gains,
+                slip,
+                trial,
+            );
+            // The friction limit of the active side turns with the bending direction:
+            // d cap/d theta through the slip limit's angle theta_n(theta) (non-zero only while
+            // slipping) ...
+            let dgain = scale * law.capstan * dtheta_n;
+            let (dg_pos, dg_neg) = (dgain * (gains[0] + 1.0), dgain * (1.0 - gains[1]));
+            let cap_theta = f.d_cap_pos * dg_pos + f.d_cap_neg * dg_neg;
+            // ... times d theta/d kappa: theta = phi - beta (wrapped), so d|theta|/d kappa =
+            // -sign(theta) d beta/d kappa.
+            let sign = if theta < 0.0 { -1.0 } else { 1.0 };
+            let dtheta = [-sign * dir.dbeta[0], -sign * dir.dbeta[1]];
+            // The stored energy's dependence on the active limit, d E/d cap d cap/d kappa.
+            let cap_energy = f.d_energy_cap * (f.d_cap_pos * dg_pos - f.d_cap_neg * dg_neg);
+            let ms = (f.d_cap_pos * gains[0] + f.d_cap_neg * gains[1]) * dscale;
+            for a in 0..2 {
+                r.moment[a] += f.force * l[a];
+                r.moment_strain[a] += ms * l[a];
+                r.energy_turn[a] += cap_energy * dtheta[a];
+                for j in 0..2 {
+                    // The stick part summed symmetrically (and as in `planar` for a = j = z).
+                    let stick = if a == j {
+                        f.d_strain * l[a] * l[a]
+                    } else {
+                        f.d_strain * (l[0] * l[1])
+                    };
+                    r.moment_curvature[a][j] += stick + l[a] * (cap_theta * dtheta[j]);
+                }
             }
-            m += f.force * lambda;
-            dm_deps += (f.d_cap_pos * gains[0] + f.d_cap_neg * gains[1]) * dscale * lambda;
             let cap_strain = (f.d_cap_pos * gains[0] - f.d_cap_neg * gains[1]) * dscale;
             r.energy += f.energy;
             r.energy_strain += f.d_energy_cap * cap_strain;
             r.slip_work += f.slip_work;
             r.slipping += usize::from(f.state == WireState::Slip);
-        }
-        for a in 0..2 {
-            r.moment[a] += m * kh[a];
-            r.moment_strain[a] = dm_deps * kh[a];
-            for j in 0..2 {
-                let proj = if a == j { 1.0 } else { 0.0 } - kh[a] * kh[j];
-                r.moment_curvature[a][j] += kh[a] * dm[j] + m * proj / knorm;
-            }
         }
         r
     }
@@ -732,12 +721,13 @@ impl SectionLaw {
         };
         let (scale, _) = self.cap_scale(eps);
         let knorm = kappa[0].hypot(kappa[1]);
-        let (kh, b) = if knorm == 0.0 {
-            ([0.0, -1.0], [0.0, 1.0])
+        // At zero curvature: bending with the convex side toward +y (kappa_z < 0).
+        let kh = if knorm == 0.0 {
+            [0.0, -1.0]
         } else {
-            ([kappa[0] / knorm, kappa[1] / knorm], neutral_axis(kappa))
+            [kappa[0] / knorm, kappa[1] / knorm]
         };
-        let beta = b[0].atan2(b[1]);
+        let dir = BendingDirection::of(kappa);
         let factor = if self.kind == LawKind::Paper {
             law.paper_factor
         } else {
@@ -750,23 +740,22 @@ impl SectionLaw {
                 let l = w.lever;
                 let lambda = l[0] * kh[0] + l[1] * kh[1];
                 let arm = lambda.abs();
-                let p = w.position;
-                let c = (p[0] * b[0] + p[1] * b[1]).clamp(-1.0, 1.0);
-                let sin_t = (p[0] * b[1] - p[1] * b[0]).abs();
-                let theta = sin_t.atan2(c);
+                let phase = dir.wire_angle(w.phase);
+                let theta = phase.abs();
                 let gains = law.gains(theta).0;
-                let f = self.slide(law, i, lambda * knorm, scale, gains, slip, &mut []);
+                let e = l[0] * kappa[0] + l[1] * kappa[1];
+                let f = self.slide(law, i, e, scale, gains, slip, &mut []);
                 let stretched = if f.force != 0.0 {
                     f.force > 0.0
                 } else {
                     lambda >= 0.0
                 };
                 let gain = gains[if stretched { 0 } else { 1 }];
-                let critical = law.critical_curvature(scale, factor, gain, theta, sin_t);
+                let critical = law.critical_curvature(scale, factor, gain, theta, theta.sin());
                 let state = law.reported_state(f.state, arm, critical, knorm);
                 WireReport {
                     wire: i + 1,
-                    phase: crate::geometry::wrap_angle(w.phase - beta),
+                    phase,
                     k_stick: law.k * arm * arm,
                     m_slip: scale * gain * arm,
                     critical_curvature: critical,
@@ -909,6 +898,45 @@ fn planar_hysteretic(
         r.energy += 0.5 * cap * cap * inv_k;
         r.slip_work += cap * (s - committed).abs();
         r.slipping += 1;
+    }
+}
+
+/// The bending direction of a curvature vector as the section law reads it: the angle `beta`
+/// of the reference half `b` of the neutral axis (module docs), measured from z toward y as
+/// the wire phases are, and d beta / d kappa (m).
+struct BendingDirection {
+    beta: f64,
+    dbeta: [f64; 2],
+}
+
+impl BendingDirection {
+    /// The direction of `kappa`; for zero curvature `b = +z` with no derivative.
+    #[inline(always)]
+    fn of(kappa: [f64; 2]) -> Self {
+        let n = kappa[0].hypot(kappa[1]);
+        if n == 0.0 {
+            return BendingDirection {
+                beta: 0.0,
+                dbeta: [0.0; 2],
+            };
+        }
+        let b = neutral_axis(kappa);
+        // beta = atan2(kappa_y, kappa_z) up to a constant (0 or pi).
+        BendingDirection {
+            beta: b[0].atan2(b[1]),
+            dbeta: [kappa[1] / n / n, -kappa[0] / n / n],
+        }
+    }
+
+    /// Signed angle (rad, in (-pi, pi]) of the wire at `phase` from `b`: the phase itself
+    /// when `b = +z` (planar bending), so that the planar law's values are met bit for bit.
+    #[inline(always)]
+    fn wire_angle(&self, phase: f64) -> f64 {
+        if self.beta == 0.0 {
+            phase
+        } else {
+            crate::geometry::wrap_angle(phase - self.beta)
+        }
     }
 }
 

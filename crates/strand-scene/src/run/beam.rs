@@ -523,21 +523,13 @@ fn run_dynamics(
             s.last.non_potential,
             s.last.non_potential / s.max_kinetic.max(f64::MIN_POSITIVE),
         );
-        summary.warnings.push(if kind == LawKind::Hysteretic {
-            // The hysteretic law has no strain term: only the 3D turn term is left.
-            format!(
-                "the `hysteretic` law put {work:.3e} J into the strand ({relative:.2e} of the \
-                 largest kinetic energy): the work of the wires' moment normal to the bending \
-                 direction, which the section law does not apply, as the bending direction \
-                 turns under slipped wires (energy.csv `non_potential`)"
-            )
-        } else {
-            format!(
-                "the `{kind}` law put {work:.3e} J into the strand ({relative:.2e} of the largest \
-                 kinetic energy): the work of its non-potential part (energy.csv \
-                 `non_potential`) is positive; the motion is not physical; use `hysteretic`"
-            )
-        });
+        // The hysteretic law has no non-potential part: its slip energy is booked as slip
+        // work.
+        summary.warnings.push(format!(
+            "the `{kind}` law put {work:.3e} J into the strand ({relative:.2e} of the largest \
+             kinetic energy): the work of its non-potential part (energy.csv `non_potential`) \
+             is positive; the motion is not physical; use `hysteretic`"
+        ));
     }
     let relative = s.balance_error / s.max_kinetic.max(f64::MIN_POSITIVE);
     summary.energy_balance_error = Some(s.balance_error);
