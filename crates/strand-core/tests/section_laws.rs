@@ -938,9 +938,10 @@ fn vector_wire_report_follows_the_bending_direction() {
 /// analytic tangent and on the secant over an out-of-plane curvature small enough to leave
 /// every wire's state as it is. A moment kept parallel to the curvature turns the residual
 /// moment `m` of the stuck wires with the bending direction, `dM_y/dkappa_y = K_min +
-/// m/|kappa|`, negative at these states. (While the wires slip back, their limits turn with
-/// the bending direction too, against the curvature: printed, not asserted; the README's
-/// finding.)
+/// m/|kappa|`, negative at these states. (While the wires slip back beyond the still
+/// curvature, at 0.2 1/m, their limits turn with the bending direction, against the
+/// curvature: printed, not asserted; the README's finding. Below it, at 0.01 and 0.001 1/m,
+/// the hysteretic law keeps the stored direction: `stored_bending_direction_near_zero_curvature`.)
 #[test]
 fn out_of_plane_stiffness_after_slip_is_not_negative() {
     let s = Strand::new(common::table1()).unwrap();
@@ -1021,5 +1022,129 @@ fn out_of_plane_stiffness_after_slip_is_not_negative() {
         }
         let want = if kind == LawKind::Hysteretic { 3 } else { 1 };
         assert_eq!(checked, want, "{kind}");
+    }
+}
+
+/// The hysteretic law's stored bending direction (module docs of `section`), Table 1 strand,
+/// strain 1e-3, both slip limits. (1) `still_curvature` is a lower bound on the first slip:
+/// from no slip, a curvature of 0.999 times it slips no wire at any station of a pitch in any
+/// direction, and twice it slips some (the bound is not vacuous). (2) Bent in the z plane to
+/// 4 1/m, where every wire slips, and unloaded to 0.001 1/m (x = 0.013 m), where the layer
+/// slips back, an out-of-plane curvature meets `dM_y/dkappa_y >= K_min`: the friction limits
+/// keep the direction of the bending that made the wires slip (turned with the direction of
+/// `kappa`, they gave -0.52 N m^2 here). (3) Bent again to 0.003 1/m, where every wire
+/// sticks with a residual force, out-of-plane curvatures of 0.1 to 0.9 times the still
+/// curvature slip no wire and meet a secant stiffness of at least `K_min`.
+#[test]
+fn stored_bending_direction_near_zero_curvature() {
+    let s = Strand::new(common::table1()).unwrap();
+    let eps = 1e-3;
+    let pitch = s.layer().unwrap().pitch;
+    for limit in SlipLimit::ALL {
+        let options = SectionOptions {
+            slip_limit: limit,
+            ..Default::default()
+        };
+        let law = SectionLaw::with_options(&s, LawKind::Hysteretic, &options);
+        let still = law.still_curvature(eps);
+        assert!(still > 0.0);
+        let zero = vec![0.0; law.state_len()];
+        let mut trial = zero.clone();
+        let mut above = 0;
+        for j in 0..40 {
+            let st = law.station(pitch * j as f64 / 40.0);
+            for a in 0..48 {
+                let d = PI * a as f64 / 24.0;
+                let kv = |m: f64| [m * still * d.sin(), m * still * d.cos()];
+                // No slip and no stored direction: the limits of the curvature's direction.
+                let state = &zero;
+                // The wires' reported states: a wire on the neutral axis has no friction
+                // limit and no force, and is reported by its critical curvature.
+                let slipping = |m: f64| {
+                    law.vector_wires(&st, eps, kv(m), state)
+                        .iter()
+                        .filter(|w| w.state == WireState::Slip)
+                        .count()
+                };
+                assert_eq!(slipping(0.999), 0, "{limit} station {j} direction {a}");
+                above += slipping(2.0);
+            }
+        }
+        assert!(
+            above > 0,
+            "{limit}: nothing slips at twice the still curvature"
+        );
+
+        let kmin = law.base_bending_stiffness();
+        let st = law.station(0.013);
+        let mut slip = zero.clone();
+        let path: Vec<f64> = (1..=400)
+            .map(|i| 0.01 * i as f64)
+            .chain((1..=3998).map(|i| 4.0 - 0.001 * i as f64))
+            .collect();
+        // Committed at every step down to 0.002 1/m; slipping back at 0.001 1/m.
+        for &k in &path {
+            law.vector(&st, eps, [0.0, k], &slip, &mut trial);
+            slip.copy_from_slice(&trial);
+        }
+        let k = 0.001;
+        assert!(still > 10.0 * k, "{limit}: still curvature {still}");
+        let prev = slip.clone();
+        let r = law.vector(&st, eps, [0.0, k], &prev, &mut trial);
+        assert!(r.slipping > 0, "{limit}: the layer does not slip back");
+        let t = r.moment_curvature[0][0];
+        let h = 1e-3 * k;
+        let p = law.vector(&st, eps, [h, k], &prev, &mut trial);
+        let secant = (p.moment[0] - r.moment[0]) / h;
+        println!("{limit} slipping back at {k} 1/m: dM_y/dkappa_y {t:.4e}, secant {secant:.4e}");
+        assert!(
+            t >= kmin && secant >= kmin * (1.0 - 1e-6),
+            "{limit}: {t} {secant}"
+        );
+
+        // Bent again to 0.003 1/m: every wire sticks.
+        for k in [0.001, 0.002, 0.003] {
+            law.vector(&st, eps, [0.0, k], &slip, &mut trial);
+            slip.copy_from_slice(&trial);
+        }
+        // Bent again by 0.002 1/m from the slip back, each wire's force has left its limit
+        // by k R_w sin(theta) 0.002 (theta = |phi|, the limits those of the bending in z); an
+        // out-of-plane curvature d changes it by at most k R_w |cos(theta)| d, so no wire
+        // slips while d < 0.002 |tan(theta)| for every wire (half of it here).
+        let safe = 0.5
+            * 0.002
+            * law
+                .planar_wires(&st, eps, 0.003, &slip)
+                .iter()
+                .map(|w| w.phase.tan().abs())
+                .fold(f64::INFINITY, f64::min);
+        let r = law.vector(&st, eps, [0.0, 0.003], &slip, &mut trial);
+        assert_eq!(r.slipping, 0, "{limit}");
+        for d in [
+            0.1 * safe,
+            safe,
+            0.1 * still,
+            0.3 * still,
+            0.6 * still,
+            0.9 * still,
+        ] {
+            let p = law.vector(&st, eps, [d, 0.003], &slip, &mut trial);
+            let secant = (p.moment[0] - r.moment[0]) / d;
+            let t = p.moment_curvature[0][0];
+            println!(
+                "{limit} at (kappa_y {d:.3e}, 0.003) 1/m: {} slip, dM_y/dkappa_y {t:.4e}, \
+                 secant {secant:.4e} N m^2",
+                p.slipping
+            );
+            if d <= safe {
+                assert_eq!(p.slipping, 0, "{limit} at kappa_y {d}");
+            }
+            // A wire that slips holds its limit of the bending in z, which the out-of-plane
+            // curvature does not turn: its force changes with the sign of its strain change.
+            assert!(
+                t >= kmin && secant >= kmin * (1.0 - 1e-9),
+                "{limit} at kappa_y {d}: {t} {secant}"
+            );
+        }
     }
 }

@@ -303,7 +303,6 @@ pub struct Beam {
     /// support holds (column).
     held_mass: Vec<(usize, usize, f64)>,
     vector_mass: VectorMass,
-    wires: usize,
     /// Coordinates per node.
     nd: usize,
     /// Initial section frame of every bending point (spatial element).
@@ -371,7 +370,6 @@ impl Beam {
             }
         }
         let (free_index, n_free) = supports::free_coordinates(&spec, nd);
-        let wires = law.sliders();
         let rules = (0..n)
             .map(|e| quadrature::element_rule(&law, &spec, e, l))
             .collect::<Result<Vec<_>, _>>()?;
@@ -397,7 +395,6 @@ impl Beam {
             moving,
             motions,
             held_mass,
-            wires,
             nd,
             frame,
         })

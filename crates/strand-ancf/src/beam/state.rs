@@ -2,7 +2,9 @@
 //!
 //! Every bending point holds, in one vector over the beam ([`Beam::state_len`] values, point
 //! after point):
-//! * the section law's slip state (one value per wire for the hysteretic law, none otherwise);
+//! * the section law's state ([`strand_core::SectionLaw::state_len`]: for the hysteretic law
+//!   the slip of each wire and the stored bending direction of the friction limits, none
+//!   otherwise);
 //! * for the spatial element, the point's reference section frame `(t0, e_z0)`
 //!   ([`SectionFrame::STATE_LEN`] values): the section turns without spin about the tangent
 //!   (see [`crate::spatial`]), so the frame carried to the accepted tangent is the next step's
@@ -18,13 +20,9 @@ use super::{Beam, ElementKind};
 use crate::spatial::SectionFrame;
 
 impl Beam {
-    /// Slip state values per bending point: one per wire for a law with state, else none.
+    /// Section-law state values per bending point (none for a law without state).
     pub(crate) fn law_state_per_point(&self) -> usize {
-        if self.law.kind().has_state() {
-            self.wires
-        } else {
-            0
-        }
+        self.law.state_len()
     }
 
     /// Section-frame state values per bending point (spatial element only).
@@ -58,7 +56,7 @@ impl Beam {
         s
     }
 
-    /// The slip state of bending point `i` (empty for a law without state).
+    /// The section-law state of bending point `i` (empty for a law without state).
     pub fn point_slip<'s>(&self, state: &'s [f64], i: usize) -> &'s [f64] {
         let ws = self.state_per_point();
         &state[i * ws..i * ws + self.law_state_per_point()]

@@ -43,6 +43,26 @@
 //! kappa)`, and the `continuous` and `paper` laws, whose slip energy depends on the limit,
 //! change their stored energy without work of the moment (`SectionResponse::energy_turn`). K_min
 //! and the axial stiffness are isotropic.
+//!
+//! # Bending direction of the friction limits
+//!
+//! The friction limit of a wire builds up from the neutral axis of the bending that made it
+//! slip. Near zero curvature the direction of `kappa` is ill-defined: a tiny out-of-plane
+//! curvature turns the neutral axis a long way, and a wire with residual slip from an earlier
+//! bending would meet a turned limit it never slipped against (after a layer slipped back, the
+//! out-of-plane tangent of the Table 1 strand was -0.52 N m^2 at 0.001 1/m). A curvature too
+//! small to slip a wire of a section without residual slip cannot re-orient its limits: below
+//! the still curvature ([`SectionLaw::still_curvature`], a lower bound on the first slip in
+//! every direction) the `hysteretic` law keeps the direction of the last committed bending
+//! beyond it, stored per station after the wires' slips ([`SectionLaw::state_len`]; none
+//! stored before the first, where the limits follow `kappa`); beyond it the limits follow
+//! `kappa` as above. In planar bending both directions are the z axis, so the planar law is
+//! met bit for bit. The laws without state (`continuous`, `paper`) keep turning their limits
+//! with `kappa` at every curvature. Where `|kappa|` crosses the still curvature the limits
+//! switch from the stored direction to that of `kappa`, a jump for a wire at its limit when the
+//! two differ. The alternative of Masing's rule (the direction of the curvature change since the
+//! last reversal) has no unique reversal in two dimensions: a rotating curvature reverses at
+//! every step by the test `(kappa - kappa_c) . (kappa_c - kappa_r) < 0`.
 
 mod options;
 mod slider;
@@ -115,9 +135,22 @@ struct LayerLaw {
     /// eta; 1 with the `papailiou` limit, whose cos(alpha) makes eq. (23) the point where
     /// eqs. (22a) and (22b) meet.
     paper_factor: f64,
+    /// A lower bound on the curvature at which a wire of a section without residual slip
+    /// first slips, in any bending direction, per unit friction-limit scale (1/(m N)): the
+    /// hysteretic law turns the friction limits only with a bending larger than this
+    /// (module docs, "Bending direction of the friction limits").
+    still_per_scale: f64,
 }
 
 impl LayerLaw {
+    /// The curvature magnitude (1/m) below which the hysteretic law keeps the stored bending
+    /// direction, at friction-limit scale `scale` (N): no wire of a section without residual
+    /// slip slips below it, in any direction.
+    #[inline(always)]
+    fn still_curvature(&self, scale: f64) -> f64 {
+        scale * self.still_per_scale
+    }
+
     /// The critical curvature (1/m) a wire report gives for a wire at angle `theta` (rad,
     /// `sin_t` its sine) from the reference half of the neutral axis, with friction limit
     /// `scale gain` on the loaded side of its slider: `scale gain / (k factor R_w sin(theta))`.
@@ -346,6 +379,12 @@ impl SectionLaw {
                         SlipLimit::Paper => c2,
                         SlipLimit::Papailiou => 1.0,
                     },
+                    still_per_scale: still_per_scale(
+                        strand.friction() * a.sin(),
+                        options.slip_limit,
+                        k,
+                        l.radius,
+                    ),
                 }
             }),
         };
@@ -400,14 +439,25 @@ impl SectionLaw {
                 .layer
                 .map_or(0.0, |l| 0.5 * l.wires as f64 * l.k * l.radius * l.radius)
     }
+    /// The curvature magnitude (1/m) below which no wire of a section without residual slip
+    /// slips, in any bending direction, at strain `eps` (a lower bound on the first-slip
+    /// curvature; 0 without tension or wires). Below it the hysteretic law keeps the stored
+    /// bending direction of its friction limits (module docs).
+    pub fn still_curvature(&self, eps: f64) -> f64 {
+        self.layer
+            .map_or(0.0, |l| l.still_curvature(self.cap_scale(eps).0))
+    }
     /// Number of friction sliders per station (0 for `constant` and plain wires).
     pub fn sliders(&self) -> usize {
         self.layer.map_or(0, |l| l.wires)
     }
-    /// Length of the slip-state slice a station needs (hysteretic law; 0 otherwise).
+    /// Length of the state slice a station needs: for the hysteretic law the slip strain of
+    /// each wire, then the stored bending direction of the friction limits (the unit vector
+    /// (y, z) of the neutral axis's reference half, (0, 0) before any; module docs); 0 for the
+    /// other laws and for a strand without wires. Zeros are the straight, unslipped state.
     pub fn state_len(&self) -> usize {
-        if self.kind.has_state() {
-            self.sliders()
+        if self.kind.has_state() && self.sliders() > 0 {
+            self.sliders() + DIRECTION_STATE
         } else {
             0
         }
@@ -495,17 +545,23 @@ impl SectionLaw {
         let mut r = self.planar_linear(eps, kappa);
         let Some(law) = self.layer else { return r };
         let (scale, dscale) = self.cap_scale(eps);
+        let n = st.wires.len();
         match self.kind {
             LawKind::Continuous => {
                 planar_continuous(law.k, law.inv_k, &st.planar, kappa, scale, dscale, &mut r);
             }
-            LawKind::Hysteretic if slip.len() == st.wires.len() && trial.len() == slip.len() => {
+            LawKind::Hysteretic if slip.len() > n && trial.len() == slip.len() => {
                 let p = &st.planar;
-                planar_hysteretic(
-                    law.k, law.inv_k, p, kappa, scale, dscale, slip, trial, &mut r,
-                );
+                let (sl, tr) = (&slip[..n], &mut trial[..n]);
+                planar_hysteretic(law.k, law.inv_k, p, kappa, scale, dscale, sl, tr, &mut r);
             }
             _ => self.planar_wires_generic(law, st, kappa, (scale, dscale), slip, trial, &mut r),
+        }
+        // The stored bending direction (hysteretic law), as `vector` writes it with kappa_y = 0:
+        // in planar bending the neutral axis's reference half is +z.
+        if slip.len() == n + DIRECTION_STATE && trial.len() == slip.len() {
+            let still = law.still_curvature(scale);
+            BendingDirection::select([0.0, kappa], still, &slip[n..], Some(&mut trial[n..]));
         }
         r
     }
@@ -544,9 +600,10 @@ impl SectionLaw {
     /// through its lever vector: `M = K_min kappa + sum_i F_i l_i` (module docs). The tangent
     /// is `K_min I + sum_i l_i (dF_i/de_i l_i + dF_i/dcap_i dcap_i/dkappa)`: the stick part
     /// is symmetric and positive definite, the second term is the friction limit of a
-    /// slipping wire turning with the bending direction. With `kappa_y = 0` the z components
-    /// of the moment, its tangent `dM_z/dkappa_z` and `dM_z/deps`, and the energy are those of
-    /// [`Self::planar`] bit for bit.
+    /// slipping wire turning with the bending direction (for the `hysteretic` law beyond the
+    /// still curvature only; below it the limits keep the stored direction, module docs).
+    /// With `kappa_y = 0` the z components of the moment, its tangent `dM_z/dkappa_z` and
+    /// `dM_z/deps`, and the energy are those of [`Self::planar`] bit for bit.
     pub fn vector(
         &self,
         st: &Station,
@@ -573,7 +630,13 @@ impl SectionLaw {
         };
         let Some(law) = self.layer else { return r };
         let (scale, dscale) = self.cap_scale(eps);
-        let dir = BendingDirection::of(kappa);
+        let n = st.wires.len();
+        let still = law.still_curvature(scale);
+        let dir = if slip.len() == n + DIRECTION_STATE && trial.len() == slip.len() {
+            BendingDirection::select(kappa, still, &slip[n..], Some(&mut trial[n..]))
+        } else {
+            BendingDirection::of(kappa)
+        };
         for (i, w) in st.wires.iter().enumerate() {
             let l = w.lever;
             let theta = dir.wire_angle(w.phase);
@@ -721,13 +784,27 @@ impl SectionLaw {
         };
         let (scale, _) = self.cap_scale(eps);
         let knorm = kappa[0].hypot(kappa[1]);
-        // At zero curvature: bending with the convex side toward +y (kappa_z < 0).
-        let kh = if knorm == 0.0 {
+        let n = st.wires.len();
+        let still = law.still_curvature(scale);
+        let tail = slip.get(n..).filter(|t| t.len() == DIRECTION_STATE);
+        let dir = match tail {
+            Some(t) => BendingDirection::select(kappa, still, t, None),
+            None => BendingDirection::of(kappa),
+        };
+        let kh = if let Some(b) = tail.filter(|t| knorm <= still && t != &[0.0; 2]) {
+            // The stored direction: its neutral axis's half on the side of the curvature.
+            let s = if b[0] * kappa[0] + b[1] * kappa[1] > 0.0 {
+                1.0
+            } else {
+                -1.0
+            };
+            [s * b[0], s * b[1]]
+        } else if knorm == 0.0 {
+            // At zero curvature: bending with the convex side toward +y (kappa_z < 0).
             [0.0, -1.0]
         } else {
             [kappa[0] / knorm, kappa[1] / knorm]
         };
-        let dir = BendingDirection::of(kappa);
         let factor = if self.kind == LawKind::Paper {
             law.paper_factor
         } else {
@@ -901,6 +978,11 @@ fn planar_hysteretic(
     }
 }
 
+/// State values per station that hold the stored bending direction of the hysteretic law
+/// (after the wires' slips): the unit vector `b` (y, z) of the neutral axis's reference half of
+/// the last committed bending beyond the still curvature, (0, 0) before any.
+const DIRECTION_STATE: usize = 2;
+
 /// The bending direction of a curvature vector as the section law reads it: the angle `beta`
 /// of the reference half `b` of the neutral axis (module docs), measured from z toward y as
 /// the wire phases are, and d beta / d kappa (m).
@@ -928,6 +1010,30 @@ impl BendingDirection {
         }
     }
 
+    /// The direction the hysteretic law reads at curvature `kappa` with the stored direction
+    /// `tail` ([`DIRECTION_STATE`] values): `kappa`'s own beyond the still curvature `still`
+    /// (1/m), else the stored one (`kappa`'s own if none is stored yet); writes the trial
+    /// tail, the direction of `kappa` beyond `still`, else the stored one (module docs).
+    #[inline(always)]
+    fn select(kappa: [f64; 2], still: f64, tail: &[f64], trial: Option<&mut [f64]>) -> Self {
+        let stored = [tail[0], tail[1]];
+        let (dir, axis) = if kappa[0].hypot(kappa[1]) > still {
+            (Self::of(kappa), neutral_axis(kappa))
+        } else if stored != [0.0; 2] {
+            let dir = BendingDirection {
+                beta: stored[0].atan2(stored[1]),
+                dbeta: [0.0; 2],
+            };
+            (dir, stored)
+        } else {
+            (Self::of(kappa), stored)
+        };
+        if let Some(t) = trial {
+            t[..DIRECTION_STATE].copy_from_slice(&axis);
+        }
+        dir
+    }
+
     /// Signed angle (rad, in (-pi, pi]) of the wire at `phase` from `b`: the phase itself
     /// when `b = +z` (planar bending), so that the planar law's values are met bit for bit.
     #[inline(always)]
@@ -938,6 +1044,21 @@ impl BendingDirection {
             crate::geometry::wrap_angle(phase - self.beta)
         }
     }
+}
+
+/// [`LayerLaw::still_per_scale`]. A wire at angle `theta` from the neutral axis slips when `k
+/// R_w |kappa| sin(theta)` exceeds its friction limit `scale gain`, so no wire without residual
+/// slip slips below `scale min(gain / sin(theta)) / (k R_w)`. The smaller gain, the shortened
+/// side's `1 - exp(-c theta_n)` (`c = mu sin(alpha)`), over `sin(theta) <= theta_n` is at least
+/// `(1 - exp(-c theta_n)) / theta_n`, which falls with `theta_n`: at least its value at the
+/// largest capstan angle `theta_max`, pi/2 from the nearest crossing (Papailiou), pi from the
+/// reference half (the paper's limit).
+fn still_per_scale(capstan: f64, limit: SlipLimit, k: f64, radius: f64) -> f64 {
+    let theta_max = match limit {
+        SlipLimit::Papailiou => 0.5 * std::f64::consts::PI,
+        SlipLimit::Paper => std::f64::consts::PI,
+    };
+    -(-capstan * theta_max).exp_m1() / theta_max / (k * radius)
 }
 
 /// Reference half of the neutral axis for a curvature vector: the unit vector along `kappa`
