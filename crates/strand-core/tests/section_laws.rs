@@ -378,6 +378,27 @@ proptest! {
         }
     }
 
+    /// `still_curvature` is a lower bound on the first slip: from no slip, a curvature below
+    /// it slips no wire (by the wires' reports, which judge a wire without lever by its
+    /// critical curvature) in any direction, for either slip limit and every law with wires.
+    #[test]
+    fn nothing_slips_below_the_still_curvature(
+        s in strand(), eps in 1e-5..1e-2f64, x in 0.0..1.0f64, u in 0.0..0.999f64,
+        dir in 0.0..(2.0 * PI),
+        kind in prop::sample::select(vec![LawKind::Continuous, LawKind::Paper, LawKind::Hysteretic]),
+        limit in prop::sample::select(SlipLimit::ALL.to_vec()),
+    ) {
+        let options = SectionOptions { slip_limit: limit, ..Default::default() };
+        let law = SectionLaw::with_options(&s, kind, &options);
+        let st = law.station(x);
+        let k = u * law.still_curvature(eps);
+        let kv = [k * dir.sin(), k * dir.cos()];
+        let slip = vec![0.0; law.state_len()];
+        let slipping: Vec<_> = law.vector_wires(&st, eps, kv, &slip).iter()
+            .filter(|w| w.state == WireState::Slip).map(|w| (w.wire, w.critical_curvature)).collect();
+        prop_assert!(slipping.is_empty(), "{} 1/m: {:?}", k, slipping);
+    }
+
     /// With every wire sticking the vector tangent is symmetric and positive definite, at
     /// least K_min in every direction (`K_min I + sum_i k l_i l_i^T`), and for m >= 3 evenly
     /// spaced wires isotropic: the all-stick stiffness.
