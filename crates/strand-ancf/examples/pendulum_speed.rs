@@ -72,6 +72,9 @@ fn timed(
         if let Ok(v) = std::env::var("PENDULUM_INCREMENT") {
             opts.increment = v.parse().expect("PENDULUM_INCREMENT is a number");
         }
+        if let Ok(v) = std::env::var("PENDULUM_UNLOADING") {
+            opts.unloading = v.parse().expect("PENDULUM_UNLOADING is a number");
+        }
         if let Ok(v) = std::env::var("PENDULUM_LEDGER") {
             opts.ledger = v.parse().expect("PENDULUM_LEDGER is a number");
         }

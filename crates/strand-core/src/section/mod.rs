@@ -251,6 +251,10 @@ struct PlanarWires {
     lever: Vec<f64>,
     gain_pos: Vec<f64>,
     gain_neg: Vec<f64>,
+    /// The smallest gain of either side over the wires (infinite without wires): where
+    /// `scale * gain_min > 0` every wire has both friction limits, and the kernels skip the
+    /// test for a wire without any ([`planar_continuous`]).
+    gain_min: f64,
 }
 
 /// Response of the section to a strain and a curvature vector (units: N, N m, J/m).
@@ -484,6 +488,10 @@ impl SectionLaw {
             lever: wires.iter().map(|w| w.lever[1]).collect(),
             gain_pos: wires.iter().map(|w| w.gains[0]).collect(),
             gain_neg: wires.iter().map(|w| w.gains[1]).collect(),
+            gain_min: wires
+                .iter()
+                .map(|w| w.gains[0].min(w.gains[1]))
+                .fold(f64::INFINITY, f64::min),
         };
         Station { x, wires, planar }
     }
@@ -533,7 +541,7 @@ impl SectionLaw {
     /// Evaluates the law for a signed planar curvature `kappa` (1/m, `kappa_z`) at strain
     /// `eps`. `slip` is the station's committed slip state and `trial` receives the trial state
     /// (both of length [`Self::state_len`]; empty slices for laws without state).
-    #[inline]
+    #[inline(always)]
     pub fn planar(
         &self,
         st: &Station,
@@ -548,12 +556,21 @@ impl SectionLaw {
         let n = st.wires.len();
         match self.kind {
             LawKind::Continuous => {
-                planar_continuous(law.k, law.inv_k, &st.planar, kappa, scale, dscale, &mut r);
+                let (k, ik, p) = (law.k, law.inv_k, &st.planar);
+                if scale * p.gain_min > 0.0 {
+                    planar_continuous::<false>(k, ik, p, kappa, scale, dscale, &mut r);
+                } else {
+                    planar_continuous::<true>(k, ik, p, kappa, scale, dscale, &mut r);
+                }
             }
             LawKind::Hysteretic if slip.len() > n && trial.len() == slip.len() => {
-                let p = &st.planar;
+                let (k, ik, p) = (law.k, law.inv_k, &st.planar);
                 let (sl, tr) = (&slip[..n], &mut trial[..n]);
-                planar_hysteretic(law.k, law.inv_k, p, kappa, scale, dscale, sl, tr, &mut r);
+                if scale * p.gain_min > 0.0 {
+                    planar_hysteretic::<false>(k, ik, p, kappa, scale, dscale, sl, tr, &mut r);
+                } else {
+                    planar_hysteretic::<true>(k, ik, p, kappa, scale, dscale, sl, tr, &mut r);
+                }
             }
             _ => self.planar_wires_generic(law, st, kappa, (scale, dscale), slip, trial, &mut r),
         }
@@ -882,8 +899,10 @@ impl SectionLaw {
 /// The wires' part of [`SectionLaw::planar`] for the `continuous` law, added to `r`: the
 /// slider of `slider.rs` inlined over parallel arrays (the same values, summed in the same
 /// order), without the per-wire law dispatch and optional slip state of the generic loop.
+/// `FREE`: whether a wire may have no friction limit on either side (otherwise the caller
+/// has checked that none has, and the test per wire is left out).
 #[inline(always)]
-fn planar_continuous(
+fn planar_continuous<const FREE: bool>(
     k: f64,
     inv_k: f64,
     w: &PlanarWires,
@@ -901,7 +920,7 @@ fn planar_continuous(
         let stick_force = k * e;
         // Slipping on the stretched (k e > cap_pos) or the shortened (k e < -cap_neg) side;
         // without friction limits at any strain (see `slider`).
-        let free = cap_pos == 0.0 && cap_neg == 0.0;
+        let free = FREE && cap_pos == 0.0 && cap_neg == 0.0;
         let pos = stick_force > cap_pos || (free && stick_force >= 0.0);
         let neg = stick_force < -cap_neg;
         if !(pos || neg) {
@@ -927,10 +946,11 @@ fn planar_continuous(
 
 /// The wires' part of [`SectionLaw::planar`] for the `hysteretic` law (return mapping from the
 /// committed `slip` into `trial`), added to `r`: the slider of `slider.rs` inlined over
-/// parallel arrays (the same values, summed in the same order).
+/// parallel arrays (the same values, summed in the same order). `FREE` as for
+/// [`planar_continuous`].
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn planar_hysteretic(
+fn planar_hysteretic<const FREE: bool>(
     k: f64,
     inv_k: f64,
     w: &PlanarWires,
@@ -950,7 +970,7 @@ fn planar_hysteretic(
         let (cap_pos, cap_neg) = (scale * gp[i], scale * gn[i]);
         let committed = slip[i];
         let elastic = k * (e - committed);
-        let free = cap_pos == 0.0 && cap_neg == 0.0;
+        let free = FREE && cap_pos == 0.0 && cap_neg == 0.0;
         let pos = elastic > cap_pos || (free && elastic >= 0.0);
         let neg = elastic < -cap_neg;
         if !(pos || neg) {
@@ -1090,7 +1110,7 @@ mod tests {
             let law = SectionLaw::new(&strand, kind);
             let layer = law.layer.unwrap();
             let n = law.sliders();
-            let mut count = [0usize; 2];
+            let (mut count, mut paths) = ([0usize; 2], [0usize; 2]);
             for j in 0..400 {
                 let st = law.station(0.0137 * j as f64);
                 let eps = 1e-4 * ((j % 7) as f64 - 2.0);
@@ -1119,8 +1139,11 @@ mod tests {
                 assert_eq!(fast, generic, "{kind} at station {j}");
                 assert_eq!(t_fast, t_gen);
                 count[usize::from(fast.slipping > 0 && fast.slipping < n)] += 1;
+                // Both kernels: with the test for wires without friction limits and without.
+                paths[usize::from(sd.0 * st.planar.gain_min > 0.0)] += 1;
             }
             assert!(count[0] > 0 && count[1] > 0, "{kind}: {count:?}");
+            assert!(paths[0] > 0 && paths[1] > 0, "{kind}: {paths:?}");
         }
     }
 }
