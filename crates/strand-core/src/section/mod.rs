@@ -574,11 +574,16 @@ impl SectionLaw {
             }
             _ => self.planar_wires_generic(law, st, kappa, (scale, dscale), slip, trial, &mut r),
         }
-        // The stored bending direction (hysteretic law), as `vector` writes it with kappa_y = 0:
-        // in planar bending the neutral axis's reference half is +z.
+        // The stored bending direction (hysteretic law), as `vector` writes it with kappa_y = 0
+        // (`BendingDirection::select` without its angles): beyond the still curvature the
+        // neutral axis of (0, kappa), (+-0, 1), else the stored one.
         if slip.len() == n + DIRECTION_STATE && trial.len() == slip.len() {
-            let still = law.still_curvature(scale);
-            BendingDirection::select([0.0, kappa], still, &slip[n..], Some(&mut trial[n..]));
+            let tail = if kappa.abs() > law.still_curvature(scale) {
+                [if kappa < 0.0 { -0.0 } else { 0.0 }, 1.0]
+            } else {
+                [slip[n], slip[n + 1]]
+            };
+            trial[n..].copy_from_slice(&tail);
         }
         r
     }
