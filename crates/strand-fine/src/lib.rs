@@ -59,7 +59,8 @@ pub use model::{
 };
 pub use segment::{Pose, Segment};
 pub use settle::{
-    SettleError, SettleOptions, SettleReport, SettledOptions, SettledReport, settle, solve_settled,
+    SettleError, SettleOptions, SettleReport, SettledOptions, SettledReport, settle,
+    settle_time_step, solve_settled,
 };
 pub use statics::{
     RelaxationOptions, StaticError, StaticOptions, StaticReport, solve_relaxation, solve_static,

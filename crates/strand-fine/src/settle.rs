@@ -69,6 +69,10 @@ pub struct SettleOptions {
     pub safety: f64,
     /// Simulated time allowed (s).
     pub max_time: f64,
+    /// Steps allowed, those of a motion run again at the fallback step included; `None`: no
+    /// limit but `max_time`. The motion stops at whichever limit comes first. (The motion of
+    /// [`solve_settled`]'s Newton retries after the settle is not counted.)
+    pub max_steps: Option<u64>,
     /// Tolerance on the scaled residual, as in [`StaticOptions`] (-).
     pub tolerance: f64,
     /// Steps between residual checks.
@@ -83,6 +87,7 @@ impl Default for SettleOptions {
             time_step: None,
             safety: 0.75,
             max_time: 60.0,
+            max_steps: None,
             tolerance: 1e-4,
             check_every: 100,
         }
@@ -98,6 +103,9 @@ pub struct SettleReport {
     pub time: f64,
     /// Time step (s).
     pub time_step: f64,
+    /// Steps of a motion at the default step that turned non-finite and was run again from
+    /// the start at the fallback step (0: none) (not in `steps`).
+    pub discarded_steps: u64,
     /// Damping rate (1/s).
     pub damping_rate: f64,
     /// Time over which gravity rose to its full value (s).
@@ -121,6 +129,23 @@ pub enum SettleError {
          allowance (scaled residual {residual:.3e})"
     )]
     NotSettled {
+        /// Simulated time (s).
+        time: f64,
+        /// Scaled residual reached (-).
+        residual: f64,
+        /// Largest ratio to the allowance (-).
+        ratio: f64,
+    },
+    /// The motion took `options.max_steps` steps without coming to rest.
+    #[error(
+        "not at rest after {steps} steps of {time_step:.3e} s ({time:.3} s of damped \
+         motion): force/torque {ratio:.3e} times the allowance (scaled residual {residual:.3e})"
+    )]
+    StepLimit {
+        /// Steps taken (-).
+        steps: u64,
+        /// Time step (s).
+        time_step: f64,
         /// Simulated time (s).
         time: f64,
         /// Scaled residual reached (-).
@@ -203,19 +228,22 @@ impl DampedMotion {
     }
 
     /// Moves until the residual is within the allowance at full load, or until the time
-    /// `until` (s); returns (within the allowance, largest ratio to it, scaled residual).
+    /// `until` (s) or `max_steps` steps in all; returns (within the allowance, largest ratio
+    /// to it, scaled residual).
     fn run(
         &mut self,
         model: &FineModel,
         state: &mut ModelState,
         until: f64,
+        max_steps: u64,
         progress: &mut dyn FnMut(&ModelState, f64, f64),
     ) -> Result<(bool, f64, f64), SettleError> {
         let ramp = self.ramp;
         let factor = move |t: f64| if ramp > 0.0 { (t / ramp).min(1.0) } else { 1.0 };
         let (mut ratio, mut residual) = (f64::INFINITY, f64::INFINITY);
-        while self.int.time < until {
-            self.int.advance(model, state, self.check, &factor);
+        while self.int.time < until && self.int.steps < max_steps {
+            let steps = self.check.min(max_steps - self.int.steps);
+            self.int.advance(model, state, steps, &factor);
             (ratio, _, residual) = residual_norms(self.int.loads(), &self.sc);
             if !ratio.is_finite() {
                 return Err(SettleError::NonFinite {
@@ -235,6 +263,7 @@ impl DampedMotion {
             steps: self.int.steps,
             time: self.int.time,
             time_step: self.int.dt,
+            discarded_steps: 0,
             damping_rate: self.gamma,
             ramp_time: self.ramp,
             residual,
@@ -245,8 +274,11 @@ impl DampedMotion {
     }
 }
 
-/// The settle's time step: `options.time_step`, or `safety` x 2 / omega_max (s).
-fn settle_step(model: &FineModel, state: &ModelState, safety: f64) -> f64 {
+/// The settle's default time step at `state` (s): `safety` x 2 / omega_max, with omega_max
+/// the Lanczos estimate of [`lanczos_highest_frequency`] (every contact closed and stuck).
+/// [`settle`] and [`solve_settled`] take it (at [`SettleOptions::safety`]) unless
+/// `SettleOptions::time_step` is given.
+pub fn settle_time_step(model: &FineModel, state: &ModelState, safety: f64) -> f64 {
     let omega = lanczos_highest_frequency(model, state, LANCZOS_STEPS).omega;
     safety * 2.0 / omega
 }
@@ -268,15 +300,31 @@ fn settle_motion(
 ) -> Result<(DampedMotion, SettleReport), SettleError> {
     let start = state.clone();
     let mut safety = options.safety;
+    let mut discarded = 0;
     loop {
         let dt = options
             .time_step
-            .unwrap_or_else(|| settle_step(model, state, safety));
+            .unwrap_or_else(|| settle_time_step(model, state, safety));
         let mut motion = DampedMotion::start(model, state, options, dt);
-        match motion.run(model, state, options.max_time, progress) {
+        let max_steps = options
+            .max_steps
+            .map_or(u64::MAX, |n| n.saturating_sub(discarded));
+        match motion.run(model, state, options.max_time, max_steps, progress) {
             Ok((true, ratio, residual)) => {
-                let report = motion.report(ratio, residual);
+                let report = SettleReport {
+                    discarded_steps: discarded,
+                    ..motion.report(ratio, residual)
+                };
                 return Ok((motion, report));
+            }
+            Ok((false, ratio, residual)) if motion.int.steps >= max_steps => {
+                return Err(SettleError::StepLimit {
+                    steps: motion.int.steps + discarded,
+                    time_step: dt,
+                    time: motion.int.time,
+                    residual,
+                    ratio,
+                });
             }
             Ok((false, ratio, residual)) => {
                 return Err(SettleError::NotSettled {
@@ -286,7 +334,11 @@ fn settle_motion(
                 });
             }
             Err(e) => {
-                if options.time_step.is_some() || safety <= FALLBACK_SAFETY {
+                discarded += motion.int.steps;
+                if options.time_step.is_some()
+                    || safety <= FALLBACK_SAFETY
+                    || options.max_steps.is_some_and(|n| discarded >= n)
+                {
                     return Err(e);
                 }
                 safety = FALLBACK_SAFETY;
@@ -409,8 +461,11 @@ pub fn solve_settled(
         }
         // The motion goes on from the state it stopped at (momenta included).
         let until = motion.int.time + options.retry_interval;
-        let (_, ratio, residual) = motion.run(model, state, until, progress)?;
-        settled = motion.report(ratio, residual);
+        let (_, ratio, residual) = motion.run(model, state, until, u64::MAX, progress)?;
+        settled = SettleReport {
+            discarded_steps: settled.discarded_steps,
+            ..motion.report(ratio, residual)
+        };
         saved.clone_from(state);
     }
 }

@@ -6,6 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use serde_json::{Value, json};
+use strand_fine as fine;
 use strand_scene::{Failure, RunOptions, RunSummary, Scene, run_scene};
 
 fn out_dir(tag: &str) -> PathBuf {
@@ -311,6 +312,52 @@ fn the_fine_settling_stops_at_the_step_limit_and_keeps_its_state() {
     assert!((num(&centre.2[4], 0) - 0.4).abs() < 1e-12);
     assert!(s[0].tip.is_some());
     assert_clean(&out);
+}
+
+/// The fine model's static settling steps at the settle's own step, 0.75 x 2 / omega_max
+/// with omega_max the Lanczos estimate at rest (every contact closed and stuck), as
+/// `strand_fine::settle` does, not at the dynamic runs' step from the Gershgorin bound (which
+/// the runner took from 24 Nov 2026 to turn the step limit into a time, a step 3.2 times
+/// shorter on the Fig. 7 strand); and the motion at that step stays finite (no rerun at the
+/// fallback step).
+#[test]
+fn the_fine_settling_steps_at_the_lanczos_step() {
+    let v = scene(
+        json!({ "kind": "static" }),
+        json!({ "fine": { "segments_per_wire": 4 } }),
+    );
+    let parsed = Scene::parse(&v.to_string()).expect("a valid scene");
+    let (s, _) = run_parsed(&parsed, "settle-step");
+    assert_eq!(s[0].status, "ok", "{:?}", s[0].error);
+    // The scene's model, built here (the scene is in the model's axes: along +X, phases
+    // from +Z).
+    let n = 4;
+    let mut model = fine::FineModel::from_strand(
+        &parsed.strand,
+        fine::Discretisation {
+            core_segments: n,
+            wire_segments: n,
+        },
+        fine::Support::Clamped,
+        fine::Support::Free,
+    );
+    let contact = fine::ContactOptions {
+        penetration: parsed.models.fine.as_ref().unwrap().penetration,
+        ..fine::ContactOptions::default()
+    };
+    model.add_contacts(&parsed.strand, &contact);
+    let omega = fine::spectrum::lanczos_highest_frequency(&model, &model.rest_state(), 100).omega;
+    let dt = s[0].time_step.unwrap();
+    assert!(
+        (dt * omega / (0.75 * 2.0) - 1.0).abs() < 1e-12,
+        "step {dt:.4e} s, 0.75 x 2 / omega_max = {:.4e} s",
+        1.5 / omega
+    );
+    assert!(
+        !s[0].warnings.iter().any(|w| w.contains("fallback")),
+        "{:?}",
+        s[0].warnings
+    );
 }
 
 /// `centerline.csv` runs from the clamp (s = 0, at the origin) to the tip (s = L, where the

@@ -310,13 +310,7 @@ fn run_settle(
     progress: &mut dyn FnMut(f64),
 ) -> Result<(), Stop> {
     let mut opts = fine::SettledOptions::default();
-    let dt = fine::stable_time_step(model, state, opts.settle.safety);
-    let by_steps = max_steps as f64 * dt;
-    let capped = by_steps < opts.settle.max_time;
-    if capped {
-        opts.settle.max_time = by_steps;
-    }
-    opts.settle.time_step = Some(dt);
+    opts.settle.max_steps = Some(max_steps as u64);
     let clock = Stopwatch::start();
     let mut first = None;
     let report = fine::solve_settled(model, state, &opts, &mut |_, _, ratio| {
@@ -327,11 +321,11 @@ fn run_settle(
     clock.record(summary);
     let r = report.map_err(|e| match e {
         fine::SettleError::NonFinite { .. } => Stop::new(Failure::NonFinite, e.to_string()),
-        fine::SettleError::NotSettled { .. } if capped => Stop::new(
+        fine::SettleError::StepLimit { .. } => Stop::new(
             Failure::StepLimit,
             format!(
-                "{e}: the motion stopped at analysis.max_steps = {max_steps} steps of {dt:.3e} s; \
-                 raise analysis.max_steps (or pass --max-steps) to let it settle"
+                "{e}: the motion stopped at analysis.max_steps = {max_steps}; raise \
+                 analysis.max_steps (or pass --max-steps) to let it settle"
             ),
         ),
         fine::SettleError::NotSettled { .. } => Stop::new(Failure::NoConvergence, e.to_string()),
@@ -346,6 +340,13 @@ fn run_settle(
          {:.3} s), then Newton from the settled state",
         s.ramp_time, s.damping_rate, s.steps, s.time_step, s.time,
     ));
+    if s.discarded_steps > 0 {
+        summary.warnings.push(format!(
+            "the damped motion at its default step turned non-finite after {} steps and was \
+             run again from rest at the shorter fallback step ({:.3e} s)",
+            s.discarded_steps, s.time_step
+        ));
+    }
     match r.polish {
         Some(p) => summary.built.push(format!(
             "converged: every segment's force and torque within {:.0e} of the largest segment \
