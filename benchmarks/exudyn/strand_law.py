@@ -130,11 +130,11 @@ def check_against_cli(strand_cli, scene_path, c):
             for kappa in (-12.0, -0.4, -0.03, -0.002, 0.0, 0.002, 0.03, 0.4, 12.0):
                 out = cli_json([
                     strand_cli, "section", scene_path, "--law", "continuous", "--json",
-                    f"--strain={eps!r}", f"--curvature={-kappa!r}", f"--at={x!r}",
+                    f"--strain={eps!r}", f"--curvature={kappa!r}", f"--at={x!r}",
                 ])
-                # The command's curvature is positive with the convex side toward +y, that is
-                # kappa_z < 0, and so is its moment.
-                want = -out["moment"]
+                # The command's curvature is the signed kappa_z (positive turning
+                # counter-clockwise seen from +Z), and its moment is M_z (README "Curvature sign").
+                want = out["moment"]
                 got = continuous_moment(c, station(c, x), eps, kappa)
                 worst = max(worst, abs(got - want) / max(abs(want), 1e-9))
                 points += 1
