@@ -27,6 +27,12 @@ fn pendulum(kind: LawKind, elements: usize) -> Beam {
 }
 
 fn pendulum_of(s: &Strand, kind: LawKind, elements: usize) -> Beam {
+    horizontal(s, kind, elements, Support::Pinned, 9.8065)
+}
+
+/// `s` laid along +x on the planar element, held at x = 0 by `support`, under gravity `g`
+/// (m/s^2) along -y.
+fn horizontal(s: &Strand, kind: LawKind, elements: usize, support: Support, g: f64) -> Beam {
     Beam::new(
         BeamSpec {
             elements,
@@ -34,8 +40,8 @@ fn pendulum_of(s: &Strand, kind: LawKind, elements: usize) -> Beam {
             mass_per_length: s.mass_per_length(),
             element: ElementKind::Planar,
             direction: [1.0, 0.0, 0.0],
-            gravity: [0.0, -9.8065, 0.0],
-            start: Some(Support::Pinned),
+            gravity: [0.0, -g, 0.0],
+            start: Some(support),
             end: None,
             ..Default::default()
         },
@@ -240,21 +246,7 @@ fn tiny_gravity_moves_the_cantilever_linearly() {
     for kind in [LawKind::Constant, LawKind::Continuous, LawKind::Hysteretic] {
         let mut drops = Vec::new();
         for g in [9.8e-11, 9.8e-8] {
-            let beam = Beam::new(
-                BeamSpec {
-                    elements: 30,
-                    bending_points: None,
-                    mass_per_length: s3.mass_per_length(),
-                    element: ElementKind::Planar,
-                    direction: [1.0, 0.0, 0.0],
-                    gravity: [0.0, -g, 0.0],
-                    start: Some(Support::Clamped),
-                    end: None,
-                    ..Default::default()
-                },
-                SectionLaw::new(&s3, kind),
-            )
-            .unwrap();
+            let beam = horizontal(&s3, kind, 30, Support::Clamped, g);
             let opts = DynamicOptions::new(
                 0.1,
                 Scheme::GeneralizedAlpha {
@@ -302,21 +294,7 @@ fn tiny_gravity_moves_the_cantilever_linearly() {
 fn newton_leaves_the_balance_to_the_integrator() {
     let s3 = section3();
     let gravity = (9.8f64 * 9.8 + 4.0 * 4.0).sqrt();
-    let beam = Beam::new(
-        BeamSpec {
-            elements: 30,
-            bending_points: None,
-            mass_per_length: s3.mass_per_length(),
-            element: ElementKind::Planar,
-            direction: [1.0, 0.0, 0.0],
-            gravity: [0.0, -gravity, 0.0],
-            start: Some(Support::Pinned),
-            end: None,
-            ..Default::default()
-        },
-        SectionLaw::new(&s3, LawKind::Hysteretic),
-    )
-    .unwrap();
+    let beam = horizontal(&s3, LawKind::Hysteretic, 30, Support::Pinned, gravity);
     let balance = |h: f64| {
         let s = run(
             &beam,
