@@ -9,6 +9,7 @@ use crate::pareto::metrics::Tip;
 use crate::validate::checks::{self, BeamKind};
 use crate::validate::report::{worse, worst};
 use crate::validate::results::{Centerline, Energy, Table};
+use crate::validate::tolerances::EquivalentVariant;
 use strand_plot::{Chart, Mark, Series};
 
 /// The paper's position error between its equivalent and fine models in statics (Fig. 7,
@@ -84,7 +85,7 @@ pub(crate) fn largest(p: &[(f64, f64)]) -> (f64, f64) {
 /// Elements of the equivalent model in the default-law comparison of Fig. 7: the count
 /// `cargo xtask validate` uses for the same comparison (its own error there is 7.4e-5 to
 /// 1.2e-4 m against 64 elements, under a tenth of the paper's 1e-3 m).
-const DEFAULT_LAW_ELEMENTS: i64 = 16;
+const DEFAULT_LAW_ELEMENTS: usize = 16;
 
 /// Runs the equivalent model of `scene` with the project's default section law (the scene's
 /// `section` dropped) and [`DEFAULT_LAW_ELEMENTS`] elements into `dir`; returns its folder.
@@ -93,13 +94,17 @@ fn default_law_equivalent(
     dir: &std::path::Path,
 ) -> anyhow::Result<std::path::PathBuf> {
     let mut file = scene.file.clone();
-    file.section = None;
+    if file.models.equivalent.is_none() {
+        anyhow::bail!("the scene has no equivalent model");
+    }
     file.models.traditional = None;
     file.models.fine = None;
-    match file.models.equivalent.as_mut() {
-        Some(eq) => eq.elements = DEFAULT_LAW_ELEMENTS,
-        None => anyhow::bail!("the scene has no equivalent model"),
+    EquivalentVariant {
+        elements: Some(DEFAULT_LAW_ELEMENTS),
+        default_section: true,
+        ..Default::default()
     }
+    .apply(&mut file);
     let single = Scene::from_file(file)?;
     let opts = strand_scene::RunOptions {
         out: dir.to_path_buf(),

@@ -474,20 +474,7 @@ impl SceneRun<'_> {
     fn equivalent_variant_for_fine(&self, v: &EquivalentVariant) -> anyhow::Result<PathBuf> {
         let dir = self.out.join("vs-fine");
         let label = format!("{} equivalent for the fine comparison", self.scene.name);
-        let edit = |f: &mut SceneFile| {
-            if let (Some(eq), Some(n)) = (f.models.equivalent.as_mut(), v.elements) {
-                eq.elements = n as i64;
-            }
-            if v.default_section {
-                f.section = None;
-            }
-            if let Some(b) = &v.base_stiffness {
-                f.section
-                    .get_or_insert_with(Default::default)
-                    .base_stiffness = Some(b.clone());
-            }
-        };
-        self.run_equivalent_variant(edit, &dir, &label)?;
+        self.run_equivalent_variant(|f: &mut SceneFile| v.apply(f), &dir, &label)?;
         Ok(dir.join("equivalent"))
     }
 

@@ -73,6 +73,23 @@ pub struct EquivalentVariant {
     pub default_section: bool,
 }
 
+impl EquivalentVariant {
+    /// Changes the equivalent model of `file` as the variant says (the other models are left).
+    pub fn apply(&self, file: &mut strand_scene::format::SceneFile) {
+        if let (Some(eq), Some(n)) = (file.models.equivalent.as_mut(), self.elements) {
+            eq.elements = n as i64;
+        }
+        if self.default_section {
+            file.section = None;
+        }
+        if let Some(b) = &self.base_stiffness {
+            file.section
+                .get_or_insert_with(Default::default)
+                .base_stiffness = Some(b.clone());
+        }
+    }
+}
+
 /// One tension value the paper reports.
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
