@@ -120,6 +120,49 @@ impl Corotation {
         }
     }
 
+    /// Whether the nodes turn together: the mean of their rotation vectors (each rotation's
+    /// skew part, the sine of its angle times its axis) is longer than the nodes' spread
+    /// about it. A swinging strand turns as a whole; a strand that bends or chatters under a
+    /// kept matrix turns its nodes apart, and turning each node's block of the matrix then
+    /// carries the stiff axial coupling of neighbouring nodes into the soft transverse
+    /// directions.
+    pub(crate) fn turns_together(&self) -> bool {
+        if self.identity {
+            return true;
+        }
+        let (mut sum, mut squares, mut n) = ([0.0; 3], 0.0, 0.0);
+        let mut add = |v: [f64; 3]| {
+            for (s, x) in sum.iter_mut().zip(v) {
+                *s += x;
+            }
+            squares += v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+            n += 1.0;
+        };
+        if self.dim == 2 {
+            for r in self.rot.as_chunks::<4>().0 {
+                add([0.0, 0.0, r[2]]);
+            }
+        } else {
+            for r in self.rot.as_chunks::<9>().0 {
+                add([
+                    0.5 * (r[7] - r[5]),
+                    0.5 * (r[2] - r[6]),
+                    0.5 * (r[3] - r[1]),
+                ]);
+            }
+        }
+        if n == 0.0 {
+            return true;
+        }
+        let mean = sum.iter().map(|s| (s / n) * (s / n)).sum::<f64>();
+        mean > squares / n - mean
+    }
+
+    /// Turns nothing until the next [`Self::update`]: the kept matrix is used as built.
+    pub(crate) fn clear(&mut self) {
+        self.identity = true;
+    }
+
     /// `x <- R^T x` (`transpose`) or `x <- R x`, for a vector of free coordinates.
     pub(crate) fn apply(&self, x: &mut [f64], transpose: bool) {
         if self.identity {
@@ -308,6 +351,28 @@ mod tests {
                     assert!((a - b).abs() <= 1e-15);
                 }
             }
+        }
+    }
+
+    /// A rigid turn turns the nodes together; bending the arc the other way about its middle
+    /// turns them apart (by +0.8 to -0.8 rad along the strand), and a kept matrix is then
+    /// left unturned.
+    #[test]
+    fn turns_together_tells_a_swing_from_bending() {
+        for element in [ElementKind::Planar, ElementKind::Spatial] {
+            let beam = beam(element, None);
+            let q0 = arc(&beam, 4.0, 0.0, 0.0);
+            let mut rot = Corotation::new(&beam, &q0);
+            assert!(rot.turns_together(), "{element:?}: unturned");
+            rot.update(&arc(&beam, 4.0, 1e-3, 0.3));
+            assert!(rot.turns_together(), "{element:?}: rigid turn");
+            rot.update(&arc(&beam, -4.0, 0.0, 0.8));
+            assert!(!rot.turns_together(), "{element:?}: bent");
+            rot.clear();
+            let mut x: Vec<f64> = (0..beam.dofs()).map(|i| (i as f64).cos()).collect();
+            let x0 = x.clone();
+            rot.apply(&mut x, false);
+            assert_eq!(x, x0, "{element:?}: cleared");
         }
     }
 

@@ -6,9 +6,11 @@
 //!   ([`stable_step`], Lanczos on `M^-1 K`).
 //! * Generalized-alpha (Chung-Hulbert parameters in the Arnold-Bruels form), implicit: Newton
 //!   on `S = beta' M + K` with the analytic tangent and a band LDL^T (LU when not symmetric).
-//!   The factorized matrix is kept over iterations and steps (with a linear law also turned
-//!   with the strand, module `corotation`) and rebuilt when Newton slows. Spectral radius 1
-//!   gives the trapezoidal rule (no numerical damping).
+//!   The factorized matrix is kept over iterations and steps (turned with the strand, module
+//!   `corotation`: with a stick/slip law only while its nodes turn together) and rebuilt when
+//!   Newton slows; with a stick/slip law the kept matrix's linear convergence is accelerated
+//!   by the secant of its last two corrections. Spectral radius 1 gives the trapezoidal rule
+//!   (no numerical damping).
 //!
 //! Energy accounting (SPEC 2): kinetic `1/2 v^T M v`, gravity `-Q_g . (q - q_0)`, elastic (the
 //! section laws' stored energy), dissipated (the hysteretic law's slip work, never negative),
@@ -92,10 +94,13 @@ pub struct DynamicOptions {
     /// Generalized-alpha, `hysteretic` law: the share of their stick stiffness the iteration
     /// matrix gives to slipping wires (see [`Tangent::Iteration`]). On the section-3 pendulum
     /// at 1e-3 s steps (`pendulum_speed`, `PENDULUM_UNLOADING`), Newton iterations (matrices)
-    /// 0: 6721 (968), 0.05: 5795 (753), 0.1: 5284 (636), 0.2: 4894 (587), 0.25: 4705 (668),
-    /// 0.3: 4656 (810), 0.5: 4854 (1238), 1: 5050 (1507); the fewest instructions at 0.25
-    /// (callgrind: 771 M against 847 M at 0.1), its tip 4.8e-6 m from the run converged to
-    /// `increment` 1e-12 (3.2e-6 m at 0.1), the same energy balance (1.8e-5 J).
+    /// 0: 5610 (895), 0.1: 4612 (671), 0.2: 4314 (551), 0.25: 4209 (602), 0.3: 4177 (647),
+    /// 0.5: 4464 (1238). Before the two-step predictor, the coherent co-rotation and the
+    /// secant acceleration of the generalized-alpha step: 0: 6721 (968), 0.05: 5795 (753),
+    /// 0.1: 5284 (636), 0.2: 4894 (587), 0.25: 4705 (668), 0.3: 4656 (810), 0.5: 4854
+    /// (1238), 1: 5050 (1507); the fewest instructions at 0.25 (callgrind: 771 M against
+    /// 847 M at 0.1), its tip 4.8e-6 m from the run converged to `increment` 1e-12 (3.2e-6 m
+    /// at 0.1), the same energy balance (1.8e-5 J).
     pub unloading: f64,
     /// Generalized-alpha: the iteration matrix is rebuilt within a step when a Newton
     /// correction shrinks by less than this factor (0: full Newton; 1: rebuilt only when
@@ -595,6 +600,9 @@ struct AlphaState {
     acc: Vec<f64>,
     /// Algorithmic acceleration a.
     alg: Vec<f64>,
+    /// True acceleration at the start of the last step, q''_{n-1} (the predictor of the
+    /// stick/slip laws).
+    acc_last: Vec<f64>,
     slip: Vec<f64>,
 }
 
@@ -604,6 +612,7 @@ impl AlphaState {
         self.vf.copy_from_slice(&o.vf);
         self.acc.copy_from_slice(&o.acc);
         self.alg.copy_from_slice(&o.alg);
+        self.acc_last.copy_from_slice(&o.acc_last);
         self.slip.copy_from_slice(&o.slip);
     }
 }
@@ -632,6 +641,14 @@ struct AlphaWork {
     /// The predicted q'' of the step: the algorithmic acceleration takes up the Newton
     /// corrections from there when the step is accepted.
     acc_pred: Vec<f64>,
+    /// The last iteration's Newton correction (secant acceleration, in the step).
+    last_correction: Vec<f64>,
+    /// What the last iteration moved the coordinates by, negated.
+    last_move: Vec<f64>,
+    /// The secant direction u of the acceleration.
+    secant: Vec<f64>,
+    /// The algorithmic acceleration the step's tolerances are scaled with ([`Self::tolerance`]).
+    alg_scale: Vec<f64>,
     /// Length measures of the free coordinates.
     lengths: Lengths,
     /// Mass of the strand (kg).
@@ -674,12 +691,18 @@ impl AlphaWork {
 
     /// Newton tolerance of a step predicted at `st` (m): `increment` times the scale of the
     /// motion, the strand length or, if smaller, the largest of the displacement from the
-    /// reference so far and of the distance the strand's current velocity and acceleration
-    /// (their root mean square over the mass) carry it over the run's duration (a strand under
-    /// a tiny load moves by tiny amounts, and an absolute tolerance would accept its
-    /// predictor). Corrections within the round-off of their coordinates are converged too
-    /// ([`Lengths::within_round_off`]).
-    fn tolerance(&mut self, beam: &Beam, opts: &DynamicOptions, st: &AlphaState) -> f64 {
+    /// reference so far and of the distance the strand's current velocity and the algorithmic
+    /// acceleration `alg` (their root mean square over the mass) carry it over the run's
+    /// duration (a strand under a tiny load moves by tiny amounts, and an absolute tolerance
+    /// would accept its predictor). Corrections within the round-off of their coordinates are
+    /// converged too ([`Lengths::within_round_off`]).
+    fn tolerance(
+        &mut self,
+        beam: &Beam,
+        opts: &DynamicOptions,
+        st: &AlphaState,
+        alg: &[f64],
+    ) -> f64 {
         let moved = self.lengths.distance(beam, &st.q, beam.reference());
         self.motion = self.motion.max(moved);
         let mut rms = |x: &[f64]| {
@@ -687,7 +710,7 @@ impl AlphaWork {
             (dot(x, &self.mv) / self.mass).max(0.0).sqrt()
         };
         let t = opts.duration;
-        let acceleration = rms(&st.alg);
+        let acceleration = rms(alg);
         let coming = rms(&st.vf) * t + 0.5 * acceleration * t * t;
         let scale = self.motion.max(coming).min(beam.length());
         self.energy = self.energy.max(self.mass * acceleration * scale);
@@ -733,19 +756,34 @@ fn alpha_step(
     let nf = beam.dofs();
     let level = w.saved.len() - depth - 1;
     w.saved[level].copy_from(st);
-    // A linear section law gives smooth forces: the predictor extrapolates and the kept
-    // matrix turns with the strand (below).
     let linear = beam.law().is_linear();
-    // Predictor: constant acceleration, q''_{n+1} = q''_n, for a linear section law; zero
-    // acceleration for the stick/slip laws, where extrapolating carries wires past their slip
-    // limits. On the section-3 pendulum at 1e-3 s steps the constant acceleration leaves
-    // the constant law's first correction about ten times smaller, so the co-rotated matrix
-    // of the first step serves the whole run (2012 iterations and 2 matrices against 2287
-    // and 51 with zero acceleration), but costs the stick/slip laws 3-7 % more iterations.
-    let extrapolate = if linear { 1.0 } else { 0.0 };
+    // Predictor: constant acceleration, q''_{n+1} = q''_n, for a linear section law; for the
+    // stick/slip laws the mean of the last two steps' accelerations, (q''_n + q''_{n-1}) / 2.
+    // On the section-3 pendulum at 1e-3 s steps the constant acceleration leaves the constant
+    // law's first correction about ten times smaller than zero acceleration does, so the
+    // co-rotated matrix of the first step serves the whole run (2012 iterations and 2
+    // matrices against 2287 and 51). With the stick/slip laws q''_n also carries the strand's
+    // fast modes, which every wire that starts or stops slipping kicks and which, near the
+    // step's own frequency, change sign from step to step: extrapolated, they make the
+    // hysteretic law's Newton slower than zero acceleration does; the mean of two steps
+    // cancels them and keeps the slow motion (on a strand hanging still and chattering,
+    // `stick-slip-chatter` of `cargo xtask hard`, it mispredicts: 3.12 iterations a step
+    // against 2.54 with zero acceleration). On that pendulum (with the matrix and the acceleration
+    // below) Newton iterations (matrices) with zero acceleration, constant acceleration and
+    // the mean: continuous 5068 (421), 4643 (535), 4250 (474); hysteretic 4807 (612), 5263
+    // (1102), 4209 (602).
+    if linear {
+        w.acc_pred.copy_from_slice(&st.acc);
+    } else {
+        for i in 0..nf {
+            w.acc_pred[i] = 0.5 * (st.acc[i] + st.acc_last[i]);
+            // The algorithmic acceleration of a zero-acceleration prediction (below).
+            w.alg_scale[i] = (af * st.acc[i] - am * st.alg[i]) / (1.0 - am);
+        }
+        st.acc_last.copy_from_slice(&st.acc);
+    }
     for i in 0..nf {
-        let pa = extrapolate * st.acc[i];
-        w.acc_pred[i] = pa;
+        let pa = w.acc_pred[i];
         let a_new = (af * st.acc[i] + (1.0 - af) * pa - am * st.alg[i]) / (1.0 - am);
         w.dq[i] = h * st.vf[i] + h * h * ((0.5 - beta) * st.alg[i] + beta * a_new);
         st.vf[i] += h * ((1.0 - gamma) * st.alg[i] + gamma * a_new);
@@ -754,7 +792,19 @@ fn alpha_step(
     }
     add_free(beam, &mut st.q, 1.0, &w.dq);
     beam.move_supports(&mut st.q, t0 + h);
-    let tol = w.tolerance(beam, opts, st);
+    // The tolerances scale with the predicted algorithmic acceleration (`AlphaWork::tolerance`)
+    // and, for the stick/slip laws, with that of a zero-acceleration prediction, as before
+    // their predictor extrapolated: the two-step mean's larger acceleration raises the energy
+    // scale, which would loosen the ledger test below by about four times on the section-3
+    // pendulum (4.8e-9 to 2.0e-8 J per step at t = 0.3 s).
+    let tol = if linear {
+        w.tolerance(beam, opts, st, &st.alg)
+    } else {
+        let alg = std::mem::take(&mut w.alg_scale);
+        let tol = w.tolerance(beam, opts, st, &alg);
+        w.alg_scale = alg;
+        tol
+    };
     // The energy of a rigid translation of the whole strand by `tol` in the metric of the
     // inertia term (J): `tol` for the root mean square of a correction over the mass.
     let energy_tol = beta_p * w.mass * tol * tol;
@@ -769,10 +819,16 @@ fn alpha_step(
     // `corotation`), and rebuilt at a step's start when the last step's final contraction was
     // slower than `opts.rebuild_rate`. With the stick/slip laws the matrix is the symmetric
     // one of [`Tangent::Iteration`] (LDL^T; no slower to converge than the exact tangent on
-    // the section-3 pendulum), not turned: their iterations go to the changing set of slipping
-    // wires, and where the strand chatters (`long-run-100s` of `cargo xtask hard`, a hanging
-    // strand with its tip compressed) the slopes wiggle from node to node and the turned
-    // matrix took 30 % more iterations.
+    // the section-3 pendulum), turned only while the nodes turn together
+    // ([`Corotation::turns_together`]): where the strand bends or chatters under the kept
+    // matrix (`long-run-100s` of `cargo xtask hard`, the soft Fig. 8 pendulum on 8 elements)
+    // turning every node by its own slope took 60 % more iterations and twice the matrices
+    // (2,100,007 and 475,770 against 1,313,426 and 222,357; one turn for the whole strand,
+    // that of its mean slope, 1,768,053 and 374,359), and turning only coherent turns
+    // 1,336,599 and 231,069 (all without the secant acceleration below). On the section-3
+    // pendulum the turned matrix saves the `continuous` law iterations and matrices (no turn,
+    // every node, coherent turns: 4727 (612), 4210 (380), 4489 (467), again without the
+    // acceleration) and the hysteretic law next to none (4320 (770), 4304 (695), 4292 (698)).
     let tangent = if linear {
         Tangent::Exact
     } else {
@@ -790,6 +846,7 @@ fn alpha_step(
     w.stale = false;
     let mut prev = f64::INFINITY;
     let mut full_step = true;
+    let mut history = false;
     let mut ev = w.evaluate(beam, st, pts_new, fresh.then_some(tangent));
     iterations += 1;
     while let Some(e) = ev {
@@ -802,8 +859,11 @@ fn alpha_step(
             }
             w.factor_h = h;
             w.rot.reset(&st.q);
-        } else if linear {
+        } else {
             w.rot.update(&st.q);
+            if !linear && !w.rot.turns_together() {
+                w.rot.clear();
+            }
         }
         w.dq.copy_from_slice(&w.r);
         w.rot.apply(&mut w.dq, true);
@@ -895,21 +955,74 @@ fn alpha_step(
         if iterations >= opts.max_iterations {
             break;
         }
+        // Secant acceleration of a slow kept matrix (Anderson mixing of depth one, Walker and
+        // Ni 2011), for the stick/slip laws. Their matrix is stiffer than their tangent where
+        // wires slip (the hysteretic law's `unloading` share: on the section-3 pendulum, with
+        // no wire changing state, the corrections after a fresh matrix shrink by 0.48 per
+        // iteration at 0.25, 0.24 at 0.1, 0.004 at 0), so modified Newton contracts linearly,
+        // by theta per iteration.
+        // Two corrections of the same matrix, c_k and c_{k-1}, with the move between their
+        // iterates, d_{k-1}, give the secant estimate of the step to the root: the iterate
+        // moves by -(c_k - g u), u = d_{k-1} + c_k - c_{k-1}, with g minimizing
+        // |c_k - g (c_k - c_{k-1})|, when theta > 0.1 and the incremental potential still
+        // falls along it (r . (c_k - g u) > 0). On the section-3 pendulum at 1e-3 s steps:
+        // continuous 4489 (467) -> 4250 (474) iterations (matrices), hysteretic 4292 (698) ->
+        // 4209 (602); on `long-run-100s`'s pendulum with either law, 20 s: 8.5 and 7.1 %
+        // fewer iterations. The convergence tests above always judge the plain correction.
+        let mut slope = decrement;
+        let mut accelerated = false;
+        if !linear && history && !fresh && theta.is_finite() && theta > 0.1 {
+            let (mut dd, mut cd) = (0.0, 0.0);
+            for i in 0..nf {
+                let d = w.dq[i] - w.last_correction[i];
+                dd += d * d;
+                cd += w.dq[i] * d;
+                w.secant[i] = w.last_move[i] + d;
+            }
+            let g = cd / dd;
+            if g.is_finite() && g.abs() < MAX_SECANT {
+                let along = dot(&w.r, &w.secant);
+                let falls = decrement - g * along;
+                if falls > 0.0 {
+                    step_by(beam, st, &w.secant, -g, gamma_p, beta_p);
+                    w.last_correction.copy_from_slice(&w.dq);
+                    for (d, u) in w.dq.iter_mut().zip(&w.secant) {
+                        *d -= g * u;
+                    }
+                    slope = falls;
+                    accelerated = true;
+                }
+            }
+        }
+        if !linear && !accelerated {
+            w.last_correction.copy_from_slice(&w.dq);
+        }
+        history = !linear;
         // Rebuild the iteration matrix when the last correction shrank by less than
         // `opts.refresh`: a stale tangent converges linearly at about that rate.
         fresh = dn > opts.refresh * prev;
         prev = dn;
         ev = w.evaluate(beam, st, pts_new, fresh.then_some(tangent));
         iterations += 1;
-        full_step = true;
+        // After a secant step the next correction's ratio to this one is no contraction rate.
+        full_step = !accelerated;
+        if history {
+            w.last_move.copy_from_slice(&w.dq);
+        }
+        if fresh {
+            history = false;
+        }
         // Line search: where the potential rises again at the full correction (a stick/slip
         // kink was overshot: the slope -r . dq changed sign), step back to the root of the
         // slope's secant.
         let rises = dot(&w.r, &w.dq);
-        if ev.is_some() && decrement > 0.0 && rises < 0.0 {
-            let alpha = decrement / (decrement - rises);
+        if ev.is_some() && slope > 0.0 && rises < 0.0 {
+            let alpha = slope / (slope - rises);
             if alpha < opts.backtrack && iterations < opts.max_iterations {
                 step_by(beam, st, &w.dq, alpha - 1.0, gamma_p, beta_p);
+                for d in &mut w.last_move {
+                    *d *= alpha;
+                }
                 ev = w.evaluate(beam, st, pts_new, fresh.then_some(tangent));
                 iterations += 1;
                 full_step = false;
@@ -977,6 +1090,10 @@ fn residual(beam: &Beam, mv: &[f64], force: &[f64], g_free: &[f64], r: &mut [f64
     }
 }
 
+/// Largest secant factor g of the Newton acceleration in a generalized-alpha step (a larger
+/// one extrapolates from two nearly equal corrections, where the iteration is not contracting).
+const MAX_SECANT: f64 = 10.0;
+
 /// Halvings of a generalized-alpha step before the run stops.
 const MAX_CUTS: usize = 10;
 
@@ -997,6 +1114,7 @@ fn generalized_alpha(
         vf: zeros.clone(),
         acc: zeros.clone(),
         alg: zeros.clone(),
+        acc_last: zeros.clone(),
         slip: init.state.clone(),
     };
     let mut st = new_state();
@@ -1017,6 +1135,10 @@ fn generalized_alpha(
         rot: Corotation::new(beam, beam.reference()),
         stale: false,
         acc_pred: zeros.clone(),
+        alg_scale: zeros.clone(),
+        last_correction: zeros.clone(),
+        last_move: zeros.clone(),
+        secant: zeros.clone(),
         lengths: Lengths::of(beam),
         mass: beam.spec().mass_per_length * beam.length(),
         motion: 0.0,
@@ -1049,6 +1171,7 @@ fn generalized_alpha(
     }
     m.solve(&mut st.acc);
     st.alg.copy_from_slice(&st.acc);
+    st.acc_last.copy_from_slice(&st.acc);
     let mut drive = Drive::new(beam, &st.q, &init.v, &w.force);
     let kinetic = beam.kinetic_energy(&st.vf, drive.velocity(), &mut w.mv);
     let mut ledger = Ledger::new(beam, &st.q, ev.energy + kinetic);
