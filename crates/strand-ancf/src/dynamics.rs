@@ -969,8 +969,7 @@ fn alpha_step(
         // continuous 4489 (467) -> 4250 (474) iterations (matrices), hysteretic 4292 (698) ->
         // 4209 (602); on `long-run-100s`'s pendulum with either law, 20 s: 8.5 and 7.1 %
         // fewer iterations. The convergence tests above always judge the plain correction.
-        let mut slope = decrement;
-        let mut accelerated = false;
+        let mut secant = None;
         if !linear && history && !fresh && theta.is_finite() && theta > 0.1 {
             let (mut dd, mut cd) = (0.0, 0.0);
             for i in 0..nf {
@@ -981,22 +980,23 @@ fn alpha_step(
             }
             let g = cd / dd;
             if g.is_finite() && g.abs() < MAX_SECANT {
-                let along = dot(&w.r, &w.secant);
-                let falls = decrement - g * along;
-                if falls > 0.0 {
-                    step_by(beam, st, &w.secant, -g, gamma_p, beta_p);
-                    w.last_correction.copy_from_slice(&w.dq);
-                    for (d, u) in w.dq.iter_mut().zip(&w.secant) {
-                        *d -= g * u;
-                    }
-                    slope = falls;
-                    accelerated = true;
-                }
+                let falls = decrement - g * dot(&w.r, &w.secant);
+                secant = (falls > 0.0).then_some((g, falls));
             }
         }
-        if !linear && !accelerated {
+        if !linear {
+            // The plain correction, before any secant step changes `dq`.
             w.last_correction.copy_from_slice(&w.dq);
         }
+        let mut slope = decrement;
+        if let Some((g, falls)) = secant {
+            step_by(beam, st, &w.secant, -g, gamma_p, beta_p);
+            for (d, u) in w.dq.iter_mut().zip(&w.secant) {
+                *d -= g * u;
+            }
+            slope = falls;
+        }
+        let accelerated = secant.is_some();
         history = !linear;
         // Rebuild the iteration matrix when the last correction shrank by less than
         // `opts.refresh`: a stale tangent converges linearly at about that rate.

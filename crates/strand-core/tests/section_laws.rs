@@ -8,7 +8,7 @@ use proptest::prelude::*;
 use std::f64::consts::PI;
 use strand_core::{
     BaseStiffness, LawKind, LayDirection, LayerSpec, Material, SectionLaw, SectionOptions,
-    SlipLimit, Station, StickStiffness, Strand, StrandSpec, WireSpec, WireState,
+    SectionResponse, SlipLimit, Station, StickStiffness, Strand, StrandSpec, WireSpec, WireState,
 };
 
 /// A random valid 1+m strand: sizes, moduli, lay angle, phase, lay direction, friction.
@@ -63,6 +63,28 @@ fn strand() -> impl Strategy<Value = Strand> {
 fn curvature_scale(s: &Strand, eps: f64) -> f64 {
     let l = s.layer().unwrap();
     (eps.abs().max(1e-6) * s.friction().max(0.05) * l.lay_angle().sin() / l.radius).max(1e-6)
+}
+
+/// The vector law at the curvature `kappa` moved by `+h` and `-h` in component `c` (for
+/// central differences), from the committed state `slip`.
+#[allow(clippy::too_many_arguments)]
+fn curvature_pair(
+    law: &SectionLaw,
+    st: &Station,
+    eps: f64,
+    kappa: [f64; 2],
+    c: usize,
+    h: f64,
+    slip: &[f64],
+    trial: &mut [f64],
+) -> (SectionResponse, SectionResponse) {
+    let (mut kp, mut km) = (kappa, kappa);
+    kp[c] += h;
+    km[c] -= h;
+    (
+        law.vector(st, eps, kp, slip, trial),
+        law.vector(st, eps, km, slip, trial),
+    )
 }
 
 fn planar(law: &SectionLaw, st: &Station, eps: f64, kappa: f64) -> strand_core::PlanarResponse {
@@ -276,12 +298,7 @@ proptest! {
         let scale = s.max_bending_stiffness(BaseStiffness::default()) * 2.0;
         let v = law.vector(&st, eps, kv, &slip, &mut trial);
         for c in 0..2 {
-            let mut kp = kv;
-            let mut km = kv;
-            kp[c] += hk;
-            km[c] -= hk;
-            let p = law.vector(&st, eps, kp, &slip, &mut trial);
-            let m = law.vector(&st, eps, km, &slip, &mut trial);
+            let (p, m) = curvature_pair(&law, &st, eps, kv, c, hk, &slip, &mut trial);
             // Skip if the finite difference straddles a switch.
             prop_assume!(p.slipping == v.slipping && m.slipping == v.slipping);
             for a in 0..2 {
@@ -358,12 +375,7 @@ proptest! {
         let hk = 1e-6 * k;
         let scale = s.max_bending_stiffness(BaseStiffness::default()) * 2.0 * k;
         for c in 0..2 {
-            let mut kp = kv;
-            let mut km = kv;
-            kp[c] += hk;
-            km[c] -= hk;
-            let p = law.vector(&st, eps, kp, &slip, &mut trial);
-            let m = law.vector(&st, eps, km, &slip, &mut trial);
+            let (p, m) = curvature_pair(&law, &st, eps, kv, c, hk, &slip, &mut trial);
             prop_assume!(p.slipping == v.slipping && m.slipping == v.slipping);
             let fd = (p.energy - m.energy) / (2.0 * hk);
             let want = v.moment[c] + v.energy_turn[c];
