@@ -8,7 +8,7 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use strand_ancf::band::{BandMatrix, BandSolver};
-use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support, Tangent};
+use strand_ancf::beam::{Beam, BeamSpec, ElementKind, PointState, Support, Tangent};
 use strand_ancf::dynamics::{DynamicOptions, Scheme, run_dynamic, stable_step};
 use strand_ancf::statics::{StaticOptions, solve_static};
 use strand_core::{LawKind, SectionLaw, Strand, StrandSpec};
@@ -211,6 +211,18 @@ fn newton_iteration(c: &mut Criterion) {
                 )
                 .unwrap()
             })
+        });
+        // The stick/slip laws' Newton iterations: the forces without the bending points'
+        // books, and the books of the accepted iterate (once a step).
+        let mut pts = vec![PointState::default(); b.points()];
+        g.bench_function("forces without books", |bch| {
+            bch.iter(|| {
+                b.internal_unbooked(black_box(&q), &slip, &mut force, None, &mut pts)
+                    .unwrap()
+            })
+        });
+        g.bench_function("books of the accepted iterate", |bch| {
+            bch.iter(|| b.book_points(&slip, &mut trial, black_box(&mut pts)))
         });
         let mut solver = BandSolver::default();
         let beta_p = 1.0 / (0.25 * 1e-6);

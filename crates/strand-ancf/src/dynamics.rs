@@ -26,7 +26,7 @@
 //! direction (zero in planar motion).
 
 use crate::band::{BandMatrix, BandSolver};
-use crate::beam::{Beam, BeamError, Evaluation, PointState, Tangent};
+use crate::beam::{Beam, BeamError, ElementKind, Evaluation, PointState, Tangent};
 use crate::corotation::Corotation;
 use crate::initial::InitialState;
 use crate::measure::{Lengths, dot};
@@ -655,6 +655,10 @@ struct AlphaWork {
     mass: f64,
     /// Largest displacement from the reference configuration so far (m).
     motion: f64,
+    /// Whether the Newton iterations evaluate the forces without the bending points' books
+    /// ([`Beam::internal_unbooked`]), which the accepted iterate's are then completed with:
+    /// for the planar element with a stick/slip law.
+    unbooked: bool,
     /// Energy scale of the run so far (J): the largest ledger energy seen
     /// ([`Energies::largest`]) or, if larger, the work of the strand's inertial force at a
     /// step's prediction over the tolerance's motion scale (mass times the root mean square of
@@ -674,8 +678,10 @@ impl AlphaWork {
         tangent: Option<Tangent>,
     ) -> Option<Evaluation> {
         let k = tangent.map(|t| (&mut self.k, t));
-        let ev = beam
-            .internal_with(
+        let ev = if self.unbooked {
+            beam.internal_unbooked(&st.q, &st.slip, &mut self.force, k, pts_new)
+        } else {
+            beam.internal_with(
                 &st.q,
                 &st.slip,
                 &mut self.trial,
@@ -683,7 +689,8 @@ impl AlphaWork {
                 k,
                 Some(pts_new),
             )
-            .ok()?;
+        }
+        .ok()?;
         beam.vector_mass().mul_vec(&st.acc, &mut self.mv);
         residual(beam, &self.mv, &self.force, &self.g_free, &mut self.r);
         Some(ev)
@@ -1030,7 +1037,14 @@ fn alpha_step(
         }
     }
     match outcome {
-        Some(ev) => {
+        Some(mut ev) => {
+            if w.unbooked {
+                // The books of the accepted iterate: its trial state, energy and slip work.
+                let books = beam.book_points(&st.slip, &mut w.trial, pts_new);
+                ev.energy += books.energy;
+                ev.slip_work = books.slip_work;
+                ev.slipping = books.slipping;
+            }
             for i in 0..nf {
                 st.alg[i] += (1.0 - af) / (1.0 - am) * (st.acc[i] - w.acc_pred[i]);
             }
@@ -1143,6 +1157,7 @@ fn generalized_alpha(
         mass: beam.spec().mass_per_length * beam.length(),
         motion: 0.0,
         energy: 0.0,
+        unbooked: !beam.law().is_linear() && beam.spec().element == ElementKind::Planar,
     };
     gather_free(beam, beam.gravity_force(), &mut w.g_free);
     let mut v = vec![0.0; beam.coords()];

@@ -1,7 +1,8 @@
 //! The assembled tangent stiffness equals the finite-difference Jacobian of the assembled
 //! generalized elastic forces, for every law, away from stick/slip switch points; the forces
 //! evaluated without the tangent (the lean path of the iterations that keep their matrix) are
-//! those evaluated with it; a rigid motion of the unstrained strand produces no force and no
+//! those evaluated with it, and so are those without the bending points' books once the books
+//! are taken; a rigid motion of the unstrained strand produces no force and no
 //! energy.
 
 use strand_ancf::band::BandMatrix;
@@ -195,6 +196,85 @@ fn forces_without_the_tangent_equal_those_with_it() {
             }
         }
     }
+}
+
+/// The forces of a Newton iteration without the bending points' books, completed by
+/// `book_points` at the same iterate, are the booked evaluation: the forces, iteration
+/// matrix, trial state and points bit for bit; the energy up to the order of its sum (the
+/// axial points' part first), a few ulps of its terms.
+#[test]
+fn forces_without_books_then_books_equal_a_booked_evaluation() {
+    use strand_ancf::beam::Tangent;
+    for kind in [
+        LawKind::Constant,
+        LawKind::Continuous,
+        LawKind::Paper,
+        LawKind::Hysteretic,
+    ] {
+        let b = beam(kind, Some(Support::Pinned));
+        let n = b.coords();
+        let tangent = Tangent::Iteration { unloading: 0.25 };
+        for (k, eps) in [(0.5, 1e-3), (3.0, 2e-3), (8.0, -1e-3)] {
+            let mut q = arc(&b, k, eps);
+            for (i, v) in q.iter_mut().enumerate() {
+                *v += 1e-3 * ((i as f64) * 2.3).cos();
+            }
+            let slip: Vec<f64> = (0..b.state_len())
+                .map(|i| 1e-5 * ((i as f64) * 0.7).sin())
+                .collect();
+            let (mut trial_a, mut trial_b) = (slip.clone(), vec![7.0; slip.len()]);
+            let (mut fa, mut fb) = (vec![0.0; n], vec![0.0; n]);
+            let (mut pa, mut pb) = (
+                vec![PointState::default(); b.points()],
+                vec![PointState::default(); b.points()],
+            );
+            let mut ta = BandMatrix::zeros(b.dofs(), b.bandwidth(), b.bandwidth());
+            let mut tb = ta.clone();
+            let ea = b
+                .internal_with(
+                    &q,
+                    &slip,
+                    &mut trial_a,
+                    &mut fa,
+                    Some((&mut ta, tangent)),
+                    Some(&mut pa),
+                )
+                .unwrap();
+            let axial = b
+                .internal_unbooked(&q, &slip, &mut fb, Some((&mut tb, tangent)), &mut pb)
+                .unwrap();
+            let books = b.book_points(&slip, &mut trial_b, &mut pb);
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&fa), bits(&fb), "{kind} k {k}: forces");
+            assert_eq!(ta, tb, "{kind} k {k}: iteration matrix");
+            assert_eq!(bits(&trial_a), bits(&trial_b), "{kind} k {k}: trial state");
+            assert_eq!(pa, pb, "{kind} k {k}: points");
+            assert_eq!(books.slip_work.to_bits(), ea.slip_work.to_bits());
+            assert_eq!(books.slipping, ea.slipping);
+            // The energy's terms are at most |axial| + |books| each: the two sums differ by
+            // their rounding, a few ulps of that.
+            let terms = axial.energy.abs() + books.energy.abs();
+            let energy = axial.energy + books.energy;
+            assert!(
+                (energy - ea.energy).abs() <= 64.0 * f64::EPSILON * terms,
+                "{kind} k {k}: energy {energy} against {}",
+                ea.energy
+            );
+        }
+    }
+    // Not for the exact tangent, whose path books inline.
+    let b = beam(LawKind::Hysteretic, Some(Support::Pinned));
+    let mut t = BandMatrix::zeros(b.dofs(), b.bandwidth(), b.bandwidth());
+    let (mut f, mut p) = (
+        vec![0.0; b.coords()],
+        vec![PointState::default(); b.points()],
+    );
+    let q = b.reference().to_vec();
+    let slip = b.initial_state();
+    assert!(
+        b.internal_unbooked(&q, &slip, &mut f, Some((&mut t, Tangent::Exact)), &mut p)
+            .is_err()
+    );
 }
 
 #[test]

@@ -30,7 +30,7 @@ impl Beam {
         points: Option<&mut [PointState]>,
     ) -> Result<Evaluation, BeamError> {
         let tangent = tangent.map(|t| (t, Tangent::Exact));
-        self.assemble(q, q, slip, trial, force, tangent, points)
+        self.assemble(q, q, slip, trial, force, tangent, points, true)
     }
 
     /// [`Self::internal`] at coordinates `q` with the mean strains that each element's section
@@ -48,7 +48,7 @@ impl Beam {
         points: Option<&mut [PointState]>,
     ) -> Result<Evaluation, BeamError> {
         let tangent = tangent.map(|t| (t, Tangent::Exact));
-        self.assemble(q, means_at, slip, trial, force, tangent, points)
+        self.assemble(q, means_at, slip, trial, force, tangent, points, true)
     }
 
     /// [`Self::internal`] with a choice of tangent.
@@ -61,10 +61,36 @@ impl Beam {
         tangent: Option<(&mut BandMatrix, Tangent)>,
         points: Option<&mut [PointState]>,
     ) -> Result<Evaluation, BeamError> {
-        self.assemble(q, q, slip, trial, force, tangent, points)
+        self.assemble(q, q, slip, trial, force, tangent, points, true)
     }
 
-    /// The forces and the chosen tangent with the neighbours' mean strains taken at `means_at`.
+    /// [`Self::internal_with`] without the books of the bending points: the forces (and the
+    /// iteration matrix, if asked) of a Newton iteration, which reads nothing else. The
+    /// returned energy holds only the axial points' and the hourglass term's, no trial state
+    /// is written, and `points` receive each bending point's strain, curvature and moment;
+    /// [`Self::book_points`] completes them at the iterate that is accepted. Planar elements
+    /// with a [`Tangent::Iteration`] or no matrix only (an error otherwise): with the
+    /// `continuous` and `hysteretic` laws the books are about half the work per wire.
+    pub fn internal_unbooked(
+        &self,
+        q: &[f64],
+        slip: &[f64],
+        force: &mut [f64],
+        tangent: Option<(&mut BandMatrix, Tangent)>,
+        points: &mut [PointState],
+    ) -> Result<Evaluation, BeamError> {
+        if self.spec.element != ElementKind::Planar
+            || tangent.as_ref().is_some_and(|(_, t)| *t == Tangent::Exact)
+        {
+            return Err(BeamError::Setup(
+                "forces without books are for planar elements with an iteration matrix".into(),
+            ));
+        }
+        self.assemble(q, q, slip, &mut [], force, tangent, Some(points), false)
+    }
+
+    /// The forces and the chosen tangent with the neighbours' mean strains taken at `means_at`;
+    /// with `books`, the bending points' books too (see [`Self::internal_unbooked`]).
     #[allow(clippy::too_many_arguments)]
     fn assemble(
         &self,
@@ -75,8 +101,10 @@ impl Beam {
         force: &mut [f64],
         tangent: Option<(&mut BandMatrix, Tangent)>,
         mut points: Option<&mut [PointState]>,
+        books: bool,
     ) -> Result<Evaluation, BeamError> {
-        if self.frame_state_per_point() > 0
+        if books
+            && self.frame_state_per_point() > 0
             && (slip.len() != self.state_len() || trial.len() != self.state_len())
         {
             return Err(BeamError::Setup(format!(
@@ -119,7 +147,8 @@ impl Beam {
                         self.element_planar(e, rule, &qe, &means, sl, tr, k, pts)?
                     } else {
                         let k = want_k.then_some((&mut kp, kind));
-                        let (f, ev) = self.planar_forces(e, rule, &qe, &means, sl, tr, k, pts)?;
+                        let (f, ev) =
+                            self.planar_forces(e, rule, &qe, &means, sl, tr, k, pts, books)?;
                         (f, ev, true)
                     };
                     for a in 0..8 {
@@ -216,7 +245,7 @@ impl Beam {
                 let mut k = PlanarMatrix::zeros();
                 let qe = self.planar_coords(q, e);
                 let tangent = Some((&mut k, Tangent::AllStick));
-                self.planar_forces(e, rule, &qe, m, &slip, &mut trial, tangent, None)?;
+                self.planar_forces(e, rule, &qe, m, &slip, &mut trial, tangent, None, true)?;
                 DMatrix::from_column_slice(8, 8, k.as_slice())
             }
             ElementKind::Spatial => {

@@ -2,7 +2,7 @@
 //! stabilization and bending points with the planar section law.
 
 use nalgebra::{Vector2, Vector4};
-use strand_core::PlanarResponse;
+use strand_core::{PlanarMoment, PlanarResponse};
 
 use super::{
     AXIAL_POINTS, Beam, BeamError, BendPoint, ElementRule, Evaluation, HOURGLASS, PointState,
@@ -164,7 +164,8 @@ impl Beam {
     /// iteration that keeps its matrix and of every explicit step. With `material`, it also
     /// builds the material part of the tangent ([`super::Tangent::Iteration`], with its share
     /// of the slipping wires' stick stiffness) from the same gradients: a rank-one term per
-    /// point.
+    /// point. Without `books` the bending points' books are left out (see
+    /// [`Beam::internal_unbooked`]; `trial` is not written).
     #[allow(clippy::too_many_arguments)]
     pub(super) fn planar_forces(
         &self,
@@ -176,6 +177,7 @@ impl Beam {
         trial: &mut [f64],
         material: Option<(&mut PlanarMatrix, Tangent)>,
         mut points: Option<&mut [PointState]>,
+        books: bool,
     ) -> Result<(PlanarVector, Evaluation), BeamError> {
         let (mut material, kind) = match material {
             Some((m, kind)) => (Some(m), kind),
@@ -249,17 +251,36 @@ impl Beam {
             let BendKinematics { kappa, ka, kb, .. } = kin_pts[lane];
             let eps = law_strain(bp.strain(&eps_a, means), round);
             // Empty for a law without state (ws = 0).
-            let (sl, tr) = (
-                &slip[i * ws..(i + 1) * ws],
-                &mut trial[i * ws..(i + 1) * ws],
-            );
-            let r = if linear {
-                self.law.planar_linear(eps, kappa)
-            } else {
-                self.law.planar(&bp.station, eps, kappa, sl, tr)
-            };
+            let sl = &slip[i * ws..(i + 1) * ws];
             let point = points.as_deref_mut().map(|p| &mut p[i]);
-            book_planar_point(e, bp, eps, kappa, ea, &r, &mut ev, point)?;
+            let r = if linear && books {
+                let r = self.law.planar_linear(eps, kappa);
+                book_planar_point(e, bp, eps, kappa, ea, &r, &mut ev, point)?;
+                PlanarMoment {
+                    moment: r.moment,
+                    moment_curvature: r.moment_curvature,
+                }
+            } else if books {
+                let tr = &mut trial[i * ws..(i + 1) * ws];
+                let r = self.law.planar(&bp.station, eps, kappa, sl, tr);
+                book_planar_point(e, bp, eps, kappa, ea, &r, &mut ev, point)?;
+                PlanarMoment {
+                    moment: r.moment,
+                    moment_curvature: r.moment_curvature,
+                }
+            } else {
+                let r = self.law.planar_moment(&bp.station, eps, kappa, sl);
+                if !(r.moment.is_finite() && r.moment_curvature.is_finite()) {
+                    return Err(non_finite_moment(e, bp));
+                }
+                // What `Beam::book_points` reads and the moment; it writes the rest.
+                if let Some(p) = point {
+                    p.eps = eps;
+                    p.kappa = kappa;
+                    p.moment = r.moment;
+                }
+                r
+            };
             let wm = bp.qp.weight * r.moment;
             let row = &bp.qp.row;
             for k in 0..4 {
@@ -293,6 +314,57 @@ impl Beam {
     }
 }
 
+impl Beam {
+    /// The books of the bending points that [`Beam::internal_unbooked`] left out, at the
+    /// strains and curvatures it wrote to `points`: the section law at each of them from the
+    /// committed `slip`, its trial state into `trial` and its energy, slip work and
+    /// slipping wires into `points` and the returned [`Evaluation`] (bending points only;
+    /// add the unbooked evaluation's axial energy). The same values as a booked evaluation.
+    pub fn book_points(
+        &self,
+        slip: &[f64],
+        trial: &mut [f64],
+        points: &mut [PointState],
+    ) -> Evaluation {
+        let ws = self.state_per_point();
+        let ea = self.law.axial_stiffness();
+        let (sl, tl) = (slip.len(), trial.len());
+        let mut sum = Evaluation::default();
+        let mut p0 = 0;
+        for rule in &self.rules {
+            let np = rule.bend.len();
+            let (s0, s1) = (p0 * ws, (p0 + np) * ws);
+            let slip = &slip[s0.min(sl)..s1.min(sl)];
+            let trial = &mut trial[s0.min(tl)..s1.min(tl)];
+            let points = &mut points[p0..p0 + np];
+            // Summed per element as `book_planar_point` does in the element loop.
+            let mut ev = Evaluation::default();
+            for (i, (bp, p)) in rule.bend.iter().zip(points.iter_mut()).enumerate() {
+                let (sl, tr) = (
+                    &slip[i * ws..(i + 1) * ws],
+                    &mut trial[i * ws..(i + 1) * ws],
+                );
+                let b = self.law.planar_books(&bp.station, p.eps, p.kappa, sl, tr);
+                let w = bp.qp.weight;
+                ev.energy += w * (b.energy - 0.5 * ea * p.eps * p.eps);
+                ev.slip_work += w * b.slip_work;
+                ev.slipping += b.slipping;
+                p.x = bp.station.x;
+                p.kappa_y = 0.0;
+                p.energy_strain = b.energy_strain;
+                p.energy_turn = [0.0; 2];
+                p.weight = w;
+                p.slipping = b.slipping;
+            }
+            p0 += np;
+            sum.energy += ev.energy;
+            sum.slip_work += ev.slip_work;
+            sum.slipping += ev.slipping;
+        }
+        sum
+    }
+}
+
 /// Books the section response `r` of planar bending point `bp` (element `e`): checks that
 /// it is finite, adds its stored energy beyond the axial part, slip work and slipping wires to
 /// `ev`, and records its state in `point`, if given. Shared by both planar element paths.
@@ -309,11 +381,7 @@ fn book_planar_point(
     point: Option<&mut PointState>,
 ) -> Result<(), BeamError> {
     if !(r.moment.is_finite() && r.moment_curvature.is_finite()) {
-        return Err(BeamError::NonFinite {
-            element: e,
-            x: bp.station.x,
-            quantity: "bending moment",
-        });
+        return Err(non_finite_moment(e, bp));
     }
     let w = bp.qp.weight;
     ev.energy += w * (r.energy - 0.5 * ea * eps * eps);
@@ -333,6 +401,17 @@ fn book_planar_point(
         };
     }
     Ok(())
+}
+
+/// The error of a bending moment (or its tangent) that is not finite at point `bp` of
+/// element `e`.
+#[cold]
+fn non_finite_moment(e: usize, bp: &BendPoint) -> BeamError {
+    BeamError::NonFinite {
+        element: e,
+        x: bp.station.x,
+        quantity: "bending moment",
+    }
 }
 
 /// Bending points evaluated side by side in [`Beam::planar_forces`].

@@ -320,6 +320,32 @@ pub struct PlanarResponse {
     pub slipping: usize,
 }
 
+/// The bending moment of [`SectionLaw::planar_moment`] and its curvature tangent, without
+/// the books (energy, slip work, slipping wires) that [`SectionLaw::planar`] keeps.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PlanarMoment {
+    /// Bending moment M_z, same sign as the curvature (N m).
+    pub moment: f64,
+    /// dM/dkappa (N m^2).
+    pub moment_curvature: f64,
+}
+
+/// The books of [`SectionLaw::planar`] alone ([`SectionLaw::planar_books`]): what the energy
+/// ledger reads of the section at an accepted state.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PlanarBooks {
+    /// Stored energy density (J/m), as [`PlanarResponse::energy`].
+    pub energy: f64,
+    /// d energy/d eps at fixed curvature and slip (J/m), as
+    /// [`PlanarResponse::energy_strain`].
+    pub energy_strain: f64,
+    /// Work dissipated by slip from the committed state (J/m), as
+    /// [`PlanarResponse::slip_work`].
+    pub slip_work: f64,
+    /// Number of slipping wires.
+    pub slipping: usize,
+}
+
 /// One wire's state for reports (SPEC 6 `wires.csv`, `strand section`).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct WireReport {
@@ -558,21 +584,30 @@ impl SectionLaw {
             LawKind::Continuous => {
                 let (k, ik, p) = (law.k, law.inv_k, &st.planar);
                 if scale * p.gain_min > 0.0 {
-                    planar_continuous::<false>(k, ik, p, kappa, scale, dscale, &mut r);
+                    planar_continuous::<false, true>(k, ik, p, kappa, scale, dscale, &mut r);
                 } else {
-                    planar_continuous::<true>(k, ik, p, kappa, scale, dscale, &mut r);
+                    planar_continuous::<true, true>(k, ik, p, kappa, scale, dscale, &mut r);
                 }
             }
             LawKind::Hysteretic if slip.len() > n && trial.len() == slip.len() => {
                 let (k, ik, p) = (law.k, law.inv_k, &st.planar);
                 let (sl, tr) = (&slip[..n], &mut trial[..n]);
                 if scale * p.gain_min > 0.0 {
-                    planar_hysteretic::<false>(k, ik, p, kappa, scale, dscale, sl, tr, &mut r);
+                    planar_hysteretic::<false, true>(
+                        k, ik, p, kappa, scale, dscale, sl, tr, &mut r,
+                    );
                 } else {
-                    planar_hysteretic::<true>(k, ik, p, kappa, scale, dscale, sl, tr, &mut r);
+                    planar_hysteretic::<true, true>(k, ik, p, kappa, scale, dscale, sl, tr, &mut r);
                 }
             }
-            _ => self.planar_wires_generic(law, st, kappa, (scale, dscale), slip, trial, &mut r),
+            _ => {
+                // Through a copy: `r` itself never has its address taken, so the inlined
+                // loops above keep its sums in registers (through memory each wire's additions
+                // wait on a store and a reload of the last wire's).
+                let mut g = r;
+                self.planar_wires_generic(law, st, kappa, (scale, dscale), slip, trial, &mut g);
+                r = g;
+            }
         }
         // The stored bending direction (hysteretic law), as `vector` writes it with kappa_y = 0
         // (`BendingDirection::select` without its angles): beyond the still curvature the
@@ -586,6 +621,97 @@ impl SectionLaw {
             trial[n..].copy_from_slice(&tail);
         }
         r
+    }
+
+    /// The moment of [`Self::planar`] and its curvature tangent alone, the same values bit for
+    /// bit: what a Newton iteration reads. The books (stored energy, slip work, slipping
+    /// wires, `dM/deps`) and the trial state are left out; [`Self::planar`] at the accepted
+    /// strain and curvature gives them. For the `continuous` and `hysteretic` laws this skips
+    /// about half the work per wire.
+    #[inline(always)]
+    pub fn planar_moment(&self, st: &Station, eps: f64, kappa: f64, slip: &[f64]) -> PlanarMoment {
+        let base = self.planar_linear(eps, kappa);
+        let mut r = PlanarResponse {
+            moment: base.moment,
+            moment_curvature: base.moment_curvature,
+            ..PlanarResponse::default()
+        };
+        let Some(law) = self.layer else {
+            return PlanarMoment {
+                moment: r.moment,
+                moment_curvature: r.moment_curvature,
+            };
+        };
+        let (scale, dscale) = self.cap_scale(eps);
+        let n = st.wires.len();
+        let (k, ik, p) = (law.k, law.inv_k, &st.planar);
+        match self.kind {
+            LawKind::Continuous => {
+                if scale * p.gain_min > 0.0 {
+                    planar_continuous::<false, false>(k, ik, p, kappa, scale, dscale, &mut r);
+                } else {
+                    planar_continuous::<true, false>(k, ik, p, kappa, scale, dscale, &mut r);
+                }
+            }
+            LawKind::Hysteretic if slip.len() > n => {
+                let sl = &slip[..n];
+                if scale * p.gain_min > 0.0 {
+                    planar_hysteretic::<false, false>(
+                        k,
+                        ik,
+                        p,
+                        kappa,
+                        scale,
+                        dscale,
+                        sl,
+                        &mut [],
+                        &mut r,
+                    );
+                } else {
+                    planar_hysteretic::<true, false>(
+                        k,
+                        ik,
+                        p,
+                        kappa,
+                        scale,
+                        dscale,
+                        sl,
+                        &mut [],
+                        &mut r,
+                    );
+                }
+            }
+            _ => {
+                let full = self.planar(st, eps, kappa, slip, &mut []);
+                r.moment = full.moment;
+                r.moment_curvature = full.moment_curvature;
+            }
+        }
+        PlanarMoment {
+            moment: r.moment,
+            moment_curvature: r.moment_curvature,
+        }
+    }
+
+    /// The books of [`Self::planar`] (the same values bit for bit) and its trial state into
+    /// `trial`, without the moment and its tangents: what the energy ledger reads at an
+    /// accepted state whose moment [`Self::planar_moment`] gave.
+    #[inline(always)]
+    pub fn planar_books(
+        &self,
+        st: &Station,
+        eps: f64,
+        kappa: f64,
+        slip: &[f64],
+        trial: &mut [f64],
+    ) -> PlanarBooks {
+        let r = self.planar(st, eps, kappa, slip, trial);
+        PlanarBooks {
+            energy: r.energy,
+            energy_strain: r.energy_strain,
+            slip_work: r.slip_work,
+            slipping: r.slipping,
+        }
     }
 
     /// The wires' part of [`Self::planar`] through the generic slider (any law, optional slip
@@ -905,9 +1031,11 @@ impl SectionLaw {
 /// slider of `slider.rs` inlined over parallel arrays (the same values, summed in the same
 /// order), without the per-wire law dispatch and optional slip state of the generic loop.
 /// `FREE`: whether a wire may have no friction limit on either side (otherwise the caller
-/// has checked that none has, and the test per wire is left out).
+/// has checked that none has, and the test per wire is left out). `BOOKS`: whether the
+/// energy, `dE/deps`, `dM/deps` and the slipping wires are summed (else only the moment and
+/// its curvature tangent, the same values).
 #[inline(always)]
-fn planar_continuous<const FREE: bool>(
+fn planar_continuous<const FREE: bool, const BOOKS: bool>(
     k: f64,
     inv_k: f64,
     w: &PlanarWires,
@@ -931,7 +1059,9 @@ fn planar_continuous<const FREE: bool>(
         if !(pos || neg) {
             r.moment += stick_force * lever;
             r.moment_curvature += k * lever * lever;
-            r.energy += 0.5 * stick_force * stick_force * inv_k;
+            if BOOKS {
+                r.energy += 0.5 * stick_force * stick_force * inv_k;
+            }
             continue;
         }
         // Held at the limit: energy 1/2 k e_c^2 + cap (|e| - e_c), e_c = cap / k.
@@ -940,22 +1070,24 @@ fn planar_continuous<const FREE: bool>(
         } else {
             (cap_neg, gn[i], -1.0)
         };
-        let ec = cap * inv_k;
         r.moment += sign * cap * lever;
-        r.moment_strain += sign * gain * dscale * lever;
-        r.energy += 0.5 * cap * ec + cap * (e.abs() - ec);
-        r.energy_strain += (e.abs() - ec) * (gain * dscale);
-        r.slipping += 1;
+        if BOOKS {
+            let ec = cap * inv_k;
+            r.moment_strain += sign * gain * dscale * lever;
+            r.energy += 0.5 * cap * ec + cap * (e.abs() - ec);
+            r.energy_strain += (e.abs() - ec) * (gain * dscale);
+            r.slipping += 1;
+        }
     }
 }
 
 /// The wires' part of [`SectionLaw::planar`] for the `hysteretic` law (return mapping from the
 /// committed `slip` into `trial`), added to `r`: the slider of `slider.rs` inlined over
-/// parallel arrays (the same values, summed in the same order). `FREE` as for
-/// [`planar_continuous`].
+/// parallel arrays (the same values, summed in the same order). `FREE` and `BOOKS` as for
+/// [`planar_continuous`]; without the books `trial` is not written (it may be empty).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn planar_hysteretic<const FREE: bool>(
+fn planar_hysteretic<const FREE: bool, const BOOKS: bool>(
     k: f64,
     inv_k: f64,
     w: &PlanarWires,
@@ -968,7 +1100,8 @@ fn planar_hysteretic<const FREE: bool>(
 ) {
     let n = w.lever.len();
     let (lev, gp, gn) = (&w.lever[..n], &w.gain_pos[..n], &w.gain_neg[..n]);
-    let (slip, trial) = (&slip[..n], &mut trial[..n]);
+    let slip = &slip[..n];
+    let trial = if BOOKS { &mut trial[..n] } else { &mut [][..] };
     for i in 0..n {
         let lever = lev[i];
         let e = lever * kappa;
@@ -979,10 +1112,12 @@ fn planar_hysteretic<const FREE: bool>(
         let pos = elastic > cap_pos || (free && elastic >= 0.0);
         let neg = elastic < -cap_neg;
         if !(pos || neg) {
-            trial[i] = committed;
             r.moment += elastic * lever;
             r.moment_curvature += k * lever * lever;
-            r.energy += 0.5 * elastic * elastic * inv_k;
+            if BOOKS {
+                trial[i] = committed;
+                r.energy += 0.5 * elastic * elastic * inv_k;
+            }
             continue;
         }
         // Return mapping: the slip puts the wire on its friction limit. The stored energy is
@@ -993,13 +1128,15 @@ fn planar_hysteretic<const FREE: bool>(
         } else {
             (cap_neg, -gn[i], -cap_neg)
         };
-        let s = e - force * inv_k;
-        trial[i] = s;
         r.moment += force * lever;
-        r.moment_strain += gain * dscale * lever;
-        r.energy += 0.5 * cap * cap * inv_k;
-        r.slip_work += cap * (s - committed).abs();
-        r.slipping += 1;
+        if BOOKS {
+            let s = e - force * inv_k;
+            trial[i] = s;
+            r.moment_strain += gain * dscale * lever;
+            r.energy += 0.5 * cap * cap * inv_k;
+            r.slip_work += cap * (s - committed).abs();
+            r.slipping += 1;
+        }
     }
 }
 
