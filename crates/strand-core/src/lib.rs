@@ -23,8 +23,8 @@ pub use geometry::{
     TraditionalBeam, WireSpec,
 };
 pub use section::{
-    LawKind, PlanarBooks, PlanarMoment, PlanarResponse, SectionLaw, SectionOptions,
-    SectionResponse, SlipLimit, Station, WireReport, WireState,
+    LawKind, PlanarMoment, PlanarResponse, SectionLaw, SectionOptions, SectionResponse, SlipLimit,
+    Station, WireReport, WireState,
 };
 pub use summary::{SectionPoint, StrandSummary};
 pub use wire_bending::BaseStiffness;

@@ -479,12 +479,12 @@ proptest! {
         }
     }
 
-    /// The moment alone (`planar_moment`, what a Newton iteration reads) and the books alone
-    /// (`planar_books`, what the ledger reads at the accepted state) are those of `planar`
-    /// bit for bit, with the same trial state, along a random curvature path of every law
-    /// (the hysteretic law committing each step), at any strain, tensionless included.
+    /// The moment alone (`planar_moment`, what a Newton iteration reads; the books are taken
+    /// with `planar` at the accepted state) is that of `planar` bit for bit, along a random
+    /// curvature path of every law (the hysteretic law committing each step), at any strain,
+    /// tensionless included.
     #[test]
-    fn moment_and_books_apart_are_planar_bit_for_bit(
+    fn moment_alone_is_planar_bit_for_bit(
         s in strand(), eps in -1e-3..1e-2f64, x in 0.0..1.0f64,
         kind in prop::sample::select(vec![
             LawKind::Constant, LawKind::Continuous, LawKind::Paper, LawKind::Hysteretic,
@@ -495,22 +495,13 @@ proptest! {
         let st = law.station(x);
         let scale = curvature_scale(&s, eps);
         let mut slip = vec![0.0; law.state_len()];
-        let (mut trial, mut trial_books) = (slip.clone(), slip.clone());
+        let mut trial = slip.clone();
         for u in path {
             let k = u * scale;
             let r = law.planar(&st, eps, k, &slip, &mut trial);
             let m = law.planar_moment(&st, eps, k, &slip);
-            let b = law.planar_books(&st, eps, k, &slip, &mut trial_books);
             prop_assert_eq!(m.moment.to_bits(), r.moment.to_bits());
             prop_assert_eq!(m.moment_curvature.to_bits(), r.moment_curvature.to_bits());
-            prop_assert_eq!(b.energy.to_bits(), r.energy.to_bits());
-            prop_assert_eq!(b.energy_strain.to_bits(), r.energy_strain.to_bits());
-            prop_assert_eq!(b.slip_work.to_bits(), r.slip_work.to_bits());
-            prop_assert_eq!(b.slipping, r.slipping);
-            prop_assert_eq!(
-                trial.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
-                trial_books.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
-            );
             slip.copy_from_slice(&trial);
         }
     }

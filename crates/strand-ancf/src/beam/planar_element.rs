@@ -337,24 +337,17 @@ impl Beam {
             let slip = &slip[s0.min(sl)..s1.min(sl)];
             let trial = &mut trial[s0.min(tl)..s1.min(tl)];
             let points = &mut points[p0..p0 + np];
-            // Summed per element as `book_planar_point` does in the element loop.
+            // Summed per element as in the element loop.
             let mut ev = Evaluation::default();
             for (i, (bp, p)) in rule.bend.iter().zip(points.iter_mut()).enumerate() {
                 let (sl, tr) = (
                     &slip[i * ws..(i + 1) * ws],
                     &mut trial[i * ws..(i + 1) * ws],
                 );
-                let b = self.law.planar_books(&bp.station, p.eps, p.kappa, sl, tr);
-                let w = bp.qp.weight;
-                ev.energy += w * (b.energy - 0.5 * ea * p.eps * p.eps);
-                ev.slip_work += w * b.slip_work;
-                ev.slipping += b.slipping;
-                p.x = bp.station.x;
-                p.kappa_y = 0.0;
-                p.energy_strain = b.energy_strain;
-                p.energy_turn = [0.0; 2];
-                p.weight = w;
-                p.slipping = b.slipping;
+                let (eps, kappa) = (p.eps, p.kappa);
+                let r = self.law.planar(&bp.station, eps, kappa, sl, tr);
+                // Finite: the unbooked evaluation checked this moment at these arguments.
+                record_planar_point(bp, eps, kappa, ea, &r, &mut ev, Some(p));
             }
             p0 += np;
             sum.energy += ev.energy;
@@ -366,8 +359,7 @@ impl Beam {
 }
 
 /// Books the section response `r` of planar bending point `bp` (element `e`): checks that
-/// it is finite, adds its stored energy beyond the axial part, slip work and slipping wires to
-/// `ev`, and records its state in `point`, if given. Shared by both planar element paths.
+/// it is finite, then [`record_planar_point`]. Shared by both planar element paths.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn book_planar_point(
@@ -383,6 +375,23 @@ fn book_planar_point(
     if !(r.moment.is_finite() && r.moment_curvature.is_finite()) {
         return Err(non_finite_moment(e, bp));
     }
+    record_planar_point(bp, eps, kappa, ea, r, ev, point);
+    Ok(())
+}
+
+/// Adds the stored energy beyond the axial part, slip work and slipping wires of the section
+/// response `r` at planar bending point `bp` to `ev`, and records its state in `point`, if
+/// given.
+#[inline(always)]
+fn record_planar_point(
+    bp: &BendPoint,
+    eps: f64,
+    kappa: f64,
+    ea: f64,
+    r: &PlanarResponse,
+    ev: &mut Evaluation,
+    point: Option<&mut PointState>,
+) {
     let w = bp.qp.weight;
     ev.energy += w * (r.energy - 0.5 * ea * eps * eps);
     ev.slip_work += w * r.slip_work;
@@ -400,7 +409,6 @@ fn book_planar_point(
             slipping: r.slipping,
         };
     }
-    Ok(())
 }
 
 /// The error of a bending moment (or its tangent) that is not finite at point `bp` of

@@ -330,22 +330,6 @@ pub struct PlanarMoment {
     pub moment_curvature: f64,
 }
 
-/// The books of [`SectionLaw::planar`] alone ([`SectionLaw::planar_books`]): what the energy
-/// ledger reads of the section at an accepted state.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct PlanarBooks {
-    /// Stored energy density (J/m), as [`PlanarResponse::energy`].
-    pub energy: f64,
-    /// d energy/d eps at fixed curvature and slip (J/m), as
-    /// [`PlanarResponse::energy_strain`].
-    pub energy_strain: f64,
-    /// Work dissipated by slip from the committed state (J/m), as
-    /// [`PlanarResponse::slip_work`].
-    pub slip_work: f64,
-    /// Number of slipping wires.
-    pub slipping: usize,
-}
-
 /// One wire's state for reports (SPEC 6 `wires.csv`, `strand section`).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct WireReport {
@@ -690,27 +674,6 @@ impl SectionLaw {
         PlanarMoment {
             moment: r.moment,
             moment_curvature: r.moment_curvature,
-        }
-    }
-
-    /// The books of [`Self::planar`] (the same values bit for bit) and its trial state into
-    /// `trial`, without the moment and its tangents: what the energy ledger reads at an
-    /// accepted state whose moment [`Self::planar_moment`] gave.
-    #[inline(always)]
-    pub fn planar_books(
-        &self,
-        st: &Station,
-        eps: f64,
-        kappa: f64,
-        slip: &[f64],
-        trial: &mut [f64],
-    ) -> PlanarBooks {
-        let r = self.planar(st, eps, kappa, slip, trial);
-        PlanarBooks {
-            energy: r.energy,
-            energy_strain: r.energy_strain,
-            slip_work: r.slip_work,
-            slipping: r.slipping,
         }
     }
 
