@@ -57,6 +57,19 @@ fn arc(beam: &Beam, k: f64, eps: f64) -> Vec<f64> {
     q
 }
 
+/// The arc of [`arc`] perturbed off its symmetry, and a committed slip state that is not
+/// zero, so the hysteretic law's return mapping starts from somewhere.
+fn perturbed(beam: &Beam, k: f64, eps: f64) -> (Vec<f64>, Vec<f64>) {
+    let mut q = arc(beam, k, eps);
+    for (i, v) in q.iter_mut().enumerate() {
+        *v += 1e-3 * ((i as f64) * 2.3).cos();
+    }
+    let slip = (0..beam.state_len())
+        .map(|i| 1e-5 * ((i as f64) * 0.7).sin())
+        .collect();
+    (q, slip)
+}
+
 #[test]
 fn tangent_matches_finite_differences() {
     for kind in [
@@ -143,15 +156,7 @@ fn forces_without_the_tangent_equal_those_with_it() {
         let b = beam(kind, Some(Support::Pinned));
         let n = b.coords();
         for (k, eps) in [(0.5, 1e-3), (3.0, 2e-3), (8.0, -1e-3)] {
-            let mut q = arc(&b, k, eps);
-            for (i, v) in q.iter_mut().enumerate() {
-                *v += 1e-3 * ((i as f64) * 2.3).cos();
-            }
-            // A committed slip state that is not zero, so the hysteretic law's return mapping
-            // starts from somewhere.
-            let slip: Vec<f64> = (0..b.state_len())
-                .map(|i| 1e-5 * ((i as f64) * 0.7).sin())
-                .collect();
+            let (q, slip) = perturbed(&b, k, eps);
             let (mut trial_a, mut trial_b) = (slip.clone(), slip.clone());
             let (mut fa, mut fb) = (vec![0.0; n], vec![0.0; n]);
             let (mut pa, mut pb) = (
@@ -215,13 +220,7 @@ fn forces_without_books_then_books_equal_a_booked_evaluation() {
         let n = b.coords();
         let tangent = Tangent::Iteration { unloading: 0.25 };
         for (k, eps) in [(0.5, 1e-3), (3.0, 2e-3), (8.0, -1e-3)] {
-            let mut q = arc(&b, k, eps);
-            for (i, v) in q.iter_mut().enumerate() {
-                *v += 1e-3 * ((i as f64) * 2.3).cos();
-            }
-            let slip: Vec<f64> = (0..b.state_len())
-                .map(|i| 1e-5 * ((i as f64) * 0.7).sin())
-                .collect();
+            let (q, slip) = perturbed(&b, k, eps);
             let (mut trial_a, mut trial_b) = (slip.clone(), vec![7.0; slip.len()]);
             let (mut fa, mut fb) = (vec![0.0; n], vec![0.0; n]);
             let (mut pa, mut pb) = (

@@ -566,23 +566,11 @@ impl SectionLaw {
         let n = st.wires.len();
         match self.kind {
             LawKind::Continuous => {
-                let (k, ik, p) = (law.k, law.inv_k, &st.planar);
-                if scale * p.gain_min > 0.0 {
-                    planar_continuous::<false, true>(k, ik, p, kappa, scale, dscale, &mut r);
-                } else {
-                    planar_continuous::<true, true>(k, ik, p, kappa, scale, dscale, &mut r);
-                }
+                continuous_wires::<true>(law, &st.planar, kappa, scale, dscale, &mut r)
             }
             LawKind::Hysteretic if slip.len() > n && trial.len() == slip.len() => {
-                let (k, ik, p) = (law.k, law.inv_k, &st.planar);
                 let (sl, tr) = (&slip[..n], &mut trial[..n]);
-                if scale * p.gain_min > 0.0 {
-                    planar_hysteretic::<false, true>(
-                        k, ik, p, kappa, scale, dscale, sl, tr, &mut r,
-                    );
-                } else {
-                    planar_hysteretic::<true, true>(k, ik, p, kappa, scale, dscale, sl, tr, &mut r);
-                }
+                hysteretic_wires::<true>(law, &st.planar, kappa, scale, dscale, sl, tr, &mut r);
             }
             _ => {
                 // Through a copy: `r` itself never has its address taken, so the inlined
@@ -628,42 +616,12 @@ impl SectionLaw {
         };
         let (scale, dscale) = self.cap_scale(eps);
         let n = st.wires.len();
-        let (k, ik, p) = (law.k, law.inv_k, &st.planar);
+        let p = &st.planar;
         match self.kind {
-            LawKind::Continuous => {
-                if scale * p.gain_min > 0.0 {
-                    planar_continuous::<false, false>(k, ik, p, kappa, scale, dscale, &mut r);
-                } else {
-                    planar_continuous::<true, false>(k, ik, p, kappa, scale, dscale, &mut r);
-                }
-            }
+            LawKind::Continuous => continuous_wires::<false>(law, p, kappa, scale, dscale, &mut r),
             LawKind::Hysteretic if slip.len() > n => {
                 let sl = &slip[..n];
-                if scale * p.gain_min > 0.0 {
-                    planar_hysteretic::<false, false>(
-                        k,
-                        ik,
-                        p,
-                        kappa,
-                        scale,
-                        dscale,
-                        sl,
-                        &mut [],
-                        &mut r,
-                    );
-                } else {
-                    planar_hysteretic::<true, false>(
-                        k,
-                        ik,
-                        p,
-                        kappa,
-                        scale,
-                        dscale,
-                        sl,
-                        &mut [],
-                        &mut r,
-                    );
-                }
+                hysteretic_wires::<false>(law, p, kappa, scale, dscale, sl, &mut [], &mut r);
             }
             _ => {
                 let full = self.planar(st, eps, kappa, slip, &mut []);
@@ -987,6 +945,46 @@ impl SectionLaw {
                 .filter(|w| w.critical_curvature.is_none_or(|c| c > 0.0))
                 .map(|w| w.k_stick)
                 .sum::<f64>()
+    }
+}
+
+/// [`planar_continuous`] with the per-wire test for a wire without friction limits only where
+/// the station's smallest gain times the friction scale leaves one possible.
+#[inline(always)]
+fn continuous_wires<const BOOKS: bool>(
+    law: LayerLaw,
+    p: &PlanarWires,
+    kappa: f64,
+    scale: f64,
+    dscale: f64,
+    r: &mut PlanarResponse,
+) {
+    let (k, ik) = (law.k, law.inv_k);
+    if scale * p.gain_min > 0.0 {
+        planar_continuous::<false, BOOKS>(k, ik, p, kappa, scale, dscale, r);
+    } else {
+        planar_continuous::<true, BOOKS>(k, ik, p, kappa, scale, dscale, r);
+    }
+}
+
+/// [`planar_hysteretic`] with the free-wire test chosen as in [`continuous_wires`].
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn hysteretic_wires<const BOOKS: bool>(
+    law: LayerLaw,
+    p: &PlanarWires,
+    kappa: f64,
+    scale: f64,
+    dscale: f64,
+    slip: &[f64],
+    trial: &mut [f64],
+    r: &mut PlanarResponse,
+) {
+    let (k, ik) = (law.k, law.inv_k);
+    if scale * p.gain_min > 0.0 {
+        planar_hysteretic::<false, BOOKS>(k, ik, p, kappa, scale, dscale, slip, trial, r);
+    } else {
+        planar_hysteretic::<true, BOOKS>(k, ik, p, kappa, scale, dscale, slip, trial, r);
     }
 }
 
