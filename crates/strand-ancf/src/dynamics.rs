@@ -837,7 +837,7 @@ fn alpha_step(
     // every node, coherent turns: 4727 (612), 4210 (380), 4489 (467), again without the
     // acceleration) and the hysteretic law next to none (4320 (770), 4304 (695), 4292 (698)).
     let tangent = if linear {
-        Tangent::Exact
+        Tangent::FrozenMeans
     } else {
         let unloading = if beam.law().kind().has_state() {
             opts.unloading

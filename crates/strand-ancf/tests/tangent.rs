@@ -1,9 +1,13 @@
-//! The assembled tangent stiffness equals the finite-difference Jacobian of the assembled
-//! generalized elastic forces, for every law, away from stick/slip switch points; the forces
-//! evaluated without the tangent (the lean path of the iterations that keep their matrix) are
-//! those evaluated with it, and so are those without the bending points' books once the books
-//! are taken; a rigid motion of the unstrained strand produces no force and no
-//! energy.
+//! The assembled tangent ([`Tangent::FrozenMeans`]) equals the finite-difference Jacobian of
+//! the assembled generalized elastic forces with the neighbouring elements' mean strains held
+//! (`internal_frozen`), for every law, away from stick/slip switch points; the Jacobian of the
+//! forces the solvers balance (`internal`) differs from it by the coupling through those means
+//! alone, small enough for modified Newton to converge; the forces evaluated without the
+//! tangent (the lean path of the iterations that keep their matrix) are those evaluated with
+//! it, and so are those without the bending points' books once the books are taken; a rigid
+//! motion of the unstrained strand produces no force and no energy.
+//!
+//! [`Tangent::FrozenMeans`]: strand_ancf::beam::Tangent::FrozenMeans
 
 use strand_ancf::band::BandMatrix;
 use strand_ancf::beam::{Beam, BeamSpec, ElementKind, PointState, Support};
@@ -71,7 +75,7 @@ fn perturbed(beam: &Beam, k: f64, eps: f64) -> (Vec<f64>, Vec<f64>) {
 }
 
 #[test]
-fn tangent_matches_finite_differences() {
+fn tangent_matches_finite_differences_with_the_means_held() {
     for kind in [
         LawKind::Constant,
         LawKind::Continuous,
@@ -261,7 +265,7 @@ fn forces_without_books_then_books_equal_a_booked_evaluation() {
             );
         }
     }
-    // Not for the exact tangent, whose path books inline.
+    // Not for the frozen-means tangent, whose path books inline.
     let b = beam(LawKind::Hysteretic, Some(Support::Pinned));
     let mut t = BandMatrix::zeros(b.dofs(), b.bandwidth(), b.bandwidth());
     let (mut f, mut p) = (
@@ -271,8 +275,14 @@ fn forces_without_books_then_books_equal_a_booked_evaluation() {
     let q = b.reference().to_vec();
     let slip = b.initial_state();
     assert!(
-        b.internal_unbooked(&q, &slip, &mut f, Some((&mut t, Tangent::Exact)), &mut p)
-            .is_err()
+        b.internal_unbooked(
+            &q,
+            &slip,
+            &mut f,
+            Some((&mut t, Tangent::FrozenMeans)),
+            &mut p
+        )
+        .is_err()
     );
 }
 
@@ -329,6 +339,128 @@ fn free_span_matches_the_free_indices() {
                     "{start:?} {end:?}: coordinate {g}"
                 );
             }
+        }
+    }
+}
+
+/// The tangent the solvers factorize against the Jacobian of the forces they balance
+/// ([`Beam::internal`], the neighbours' mean strains recovered at the same coordinates): the
+/// difference is exactly the coupling through those means (the finite difference of
+/// `internal_frozen` in its `means_at` argument alone), nothing else; it vanishes where the
+/// moment does not depend on the strain (the `constant` law; a shortened strand, whose wires
+/// carry no friction); and it is small enough that the modified Newton iteration on the
+/// tangent converges to the solvers' equilibrium: its error contracts by the spectral radius of
+/// `T^-1 (J - T)` per iteration, which must be below 1 for the iteration to converge at all
+/// (bound asserted on a clamped strand, whose free tangent is regular).
+#[test]
+fn solver_jacobian_differs_from_the_tangent_by_the_means_coupling_only() {
+    use nalgebra::DMatrix;
+    for kind in [
+        LawKind::Constant,
+        LawKind::Continuous,
+        LawKind::Paper,
+        LawKind::Hysteretic,
+    ] {
+        let b = beam(kind, Some(Support::Clamped));
+        let n = b.coords();
+        let dofs = b.dofs();
+        let free: Vec<usize> = (0..n).filter(|&g| b.free_index(g).is_some()).collect();
+        for (k, eps) in [(0.5, 1e-3), (3.0, 2e-3), (3.0, -1e-3)] {
+            let mut q = arc(&b, k, eps);
+            for (i, v) in q.iter_mut().enumerate() {
+                *v += 1e-4 * ((i as f64) * 1.7).sin();
+            }
+            let slip = b.initial_state();
+            let mut trial = slip.clone();
+            let mut f0 = vec![0.0; n];
+            let mut t = BandMatrix::zeros(dofs, b.bandwidth(), b.bandwidth());
+            let base = b
+                .internal(&q, &slip, &mut trial, &mut f0, Some(&mut t), None)
+                .unwrap();
+            let mut tf = DMatrix::<f64>::zeros(dofs, dofs);
+            let mut jac = DMatrix::<f64>::zeros(dofs, dofs);
+            let mut coupling = DMatrix::<f64>::zeros(dofs, dofs);
+            let h = 1e-7;
+            let mut skipped = 0;
+            let mut worst: f64 = 0.0;
+            let row_scale: Vec<f64> = (0..dofs)
+                .map(|i| (0..dofs).map(|j| t.get(i, j).abs()).fold(0.0, f64::max))
+                .collect();
+            for (cj, &gj) in free.iter().enumerate() {
+                let (mut qp, mut qm) = (q.clone(), q.clone());
+                qp[gj] += h;
+                qm[gj] -= h;
+                let (mut fp, mut fm) = (vec![0.0; n], vec![0.0; n]);
+                // The solvers' forces: means recovered at the perturbed coordinates.
+                let ep = b
+                    .internal(&qp, &slip, &mut trial, &mut fp, None, None)
+                    .unwrap();
+                let em = b
+                    .internal(&qm, &slip, &mut trial, &mut fm, None, None)
+                    .unwrap();
+                // The coupling alone: coordinates held, the means moved.
+                let (mut cp, mut cm) = (vec![0.0; n], vec![0.0; n]);
+                let mp = b
+                    .internal_frozen(&q, &qp, &slip, &mut trial, &mut cp, None, None)
+                    .unwrap();
+                let mm = b
+                    .internal_frozen(&q, &qm, &slip, &mut trial, &mut cm, None, None)
+                    .unwrap();
+                if [ep.slipping, em.slipping, mp.slipping, mm.slipping]
+                    .iter()
+                    .any(|&s| s != base.slipping)
+                {
+                    skipped += 1;
+                    continue; // the difference straddles a switch
+                }
+                for (ri, &gi) in free.iter().enumerate() {
+                    let j_fd = (fp[gi] - fm[gi]) / (2.0 * h);
+                    let c_fd = (cp[gi] - cm[gi]) / (2.0 * h);
+                    let an = t.get(ri, cj);
+                    tf[(ri, cj)] = an;
+                    jac[(ri, cj)] = j_fd;
+                    coupling[(ri, cj)] = c_fd;
+                    // Central differences of a smooth force at h = 1e-7: truncation h^2 times
+                    // the third derivative and round-off eps_mach |f| / h, well below 1e-7 of
+                    // the row's largest stiffness (the bound of the frozen test above).
+                    let allowed = 1e-4 * an.abs() + 1e-7 * row_scale[ri] + 1e-12;
+                    worst = worst.max((j_fd - an - c_fd).abs() / allowed);
+                }
+            }
+            assert!(
+                skipped < dofs / 2,
+                "{kind}: too many columns straddle a switch"
+            );
+            assert!(
+                worst < 1.0,
+                "{kind} k {k} eps {eps}: J - T is not the means coupling ({worst:e} of the allowed)"
+            );
+            let c_max = coupling.amax();
+            let t_max = tf.amax();
+            if kind == LawKind::Constant || eps < 0.0 {
+                assert!(
+                    c_max <= 1e-7 * t_max,
+                    "{kind} k {k} eps {eps}: coupling {c_max:e} where the moment has no strain dependence"
+                );
+            }
+            // Contraction of the modified Newton iteration on T toward the zero of the
+            // solvers' forces.
+            let step = tf
+                .clone()
+                .lu()
+                .solve(&coupling)
+                .expect("regular free tangent");
+            let rho = step
+                .complex_eigenvalues()
+                .iter()
+                .map(|z| z.norm())
+                .fold(0.0, f64::max);
+            println!(
+                "{kind} k {k} eps {eps}: |C|max/|T|max {:.2e}, contraction {rho:.3e}, {} slipping, skipped {skipped}",
+                c_max / t_max,
+                base.slipping
+            );
+            assert!(rho < 1.0, "{kind} k {k} eps {eps}: contraction {rho}");
         }
     }
 }

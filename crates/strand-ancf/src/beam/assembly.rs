@@ -29,7 +29,7 @@ impl Beam {
         tangent: Option<&mut BandMatrix>,
         points: Option<&mut [PointState]>,
     ) -> Result<Evaluation, BeamError> {
-        let tangent = tangent.map(|t| (t, Tangent::Exact));
+        let tangent = tangent.map(|t| (t, Tangent::FrozenMeans));
         self.assemble(q, q, slip, trial, force, tangent, points, true)
     }
 
@@ -47,7 +47,7 @@ impl Beam {
         tangent: Option<&mut BandMatrix>,
         points: Option<&mut [PointState]>,
     ) -> Result<Evaluation, BeamError> {
-        let tangent = tangent.map(|t| (t, Tangent::Exact));
+        let tangent = tangent.map(|t| (t, Tangent::FrozenMeans));
         self.assemble(q, means_at, slip, trial, force, tangent, points, true)
     }
 
@@ -80,7 +80,9 @@ impl Beam {
         points: &mut [PointState],
     ) -> Result<Evaluation, BeamError> {
         if self.spec.element != ElementKind::Planar
-            || tangent.as_ref().is_some_and(|(_, t)| *t == Tangent::Exact)
+            || tangent
+                .as_ref()
+                .is_some_and(|(_, t)| *t == Tangent::FrozenMeans)
         {
             return Err(BeamError::Setup(
                 "forces without books are for planar elements with an iteration matrix".into(),
@@ -117,9 +119,9 @@ impl Beam {
         }
         let (mut tangent, kind) = match tangent {
             Some((t, kind)) => (Some(t), kind),
-            None => (None, Tangent::Exact),
+            None => (None, Tangent::FrozenMeans),
         };
-        let exact = kind == Tangent::Exact;
+        let exact = kind == Tangent::FrozenMeans;
         force.fill(0.0);
         if let Some(t) = tangent.as_deref_mut() {
             t.fill_zero();

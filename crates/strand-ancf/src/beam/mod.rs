@@ -187,11 +187,17 @@ impl Default for BeamSpec {
 /// Which tangent [`Beam::internal_with`] assembles.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Tangent {
-    /// `dQ_e/dq` exactly: not symmetric where the moment depends on the axial strain (the
-    /// friction limits of the stick/slip laws) or, in space, on the curvature's direction.
-    Exact,
+    /// `dQ_e/dq` of each element with the neighbouring elements' mean strains, which enter the
+    /// strain the section law reads (module `strain_recovery`), held fixed: that coupling would
+    /// not fit in the band. Exact where the moment does not depend on the strain (the
+    /// `constant` law, a strand without tension); otherwise the Jacobian of the forces the
+    /// solvers balance differs from it by that coupling alone (`tests/tangent.rs` bounds the
+    /// modified Newton contraction it costs). Not symmetric where the moment depends on the
+    /// axial strain (the friction limits of the stick/slip laws) or, in space, on the
+    /// curvature's direction.
+    FrozenMeans,
     /// An iteration matrix for modified Newton, symmetric (factorized as LDL^T, a third
-    /// cheaper than LU to factorize and half to solve with): the exact tangent without the
+    /// cheaper than LU to factorize and half to solve with): [`Tangent::FrozenMeans`] without the
     /// moment's dependence on the strain and, in space, without the law's coupling of the two
     /// bending directions; for the planar element only its material part, each section
     /// stiffness on the outer product of its strain's gradient (`EA` at the axial points,

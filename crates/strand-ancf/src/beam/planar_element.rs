@@ -181,7 +181,7 @@ impl Beam {
     ) -> Result<(PlanarVector, Evaluation), BeamError> {
         let (mut material, kind) = match material {
             Some((m, kind)) => (Some(m), kind),
-            None => (None, Tangent::Exact),
+            None => (None, Tangent::FrozenMeans),
         };
         if let Some(m) = material.as_deref_mut() {
             m.as_mut_slice().fill(0.0);

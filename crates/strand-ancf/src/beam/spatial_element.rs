@@ -32,10 +32,10 @@ impl Beam {
     ) -> Result<(SpatialVector, Evaluation, bool), BeamError> {
         let (mut tangent, kind) = match tangent {
             Some((t, kind)) => (Some(t), kind),
-            None => (None, Tangent::Exact),
+            None => (None, Tangent::FrozenMeans),
         };
         // With the coupling `d M / d eps` and the law's coupling of the two bending directions.
-        let exact = kind == Tangent::Exact;
+        let exact = kind == Tangent::FrozenMeans;
         let kin = |source| BeamError::Kinematics { element: e, source };
         let ea = self.law.axial_stiffness();
         let mut f = SpatialVector::zeros();
