@@ -50,6 +50,11 @@ pub struct ValidateArgs {
     /// `paper`), over the scene's and the tolerance file's choice.
     #[arg(long, value_name = "NAME")]
     pub base_stiffness: Option<String>,
+    /// Round-off sensitivity study: scale the gravity of every model run by (1 + N eps), eps
+    /// the machine epsilon, so that the golden rows show how far a change of the last bits of
+    /// an input moves each stored result (the argument of the golden tolerances).
+    #[arg(long, value_name = "N")]
+    pub perturb_gravity_ulps: Option<u32>,
 }
 
 /// The repository root (the parent of `xtask/`).
@@ -82,6 +87,9 @@ pub fn run(args: &ValidateArgs) -> anyhow::Result<Report> {
         if args.bless {
             bail!("--bless with --base-stiffness would store another model; refused");
         }
+    }
+    if args.perturb_gravity_ulps.is_some() && args.bless {
+        bail!("--bless with --perturb-gravity-ulps would store a perturbed scene; refused");
     }
     let out = args
         .out
@@ -188,6 +196,18 @@ pub fn perturbed(scene: &Scene, factor: f64) -> anyhow::Result<Scene> {
     Scene::from_file(file).context("perturbing the scene")
 }
 
+/// `scene` with its gravity scaled by (1 + `ulps` eps), eps the machine epsilon.
+pub fn with_gravity_ulps(scene: &Scene, ulps: u32) -> anyhow::Result<Scene> {
+    let mut file = scene.file.clone();
+    let scale = 1.0 + f64::from(ulps) * f64::EPSILON;
+    if let Some(g) = file.loads.as_mut().and_then(|l| l.gravity.as_mut()) {
+        for v in g.iter_mut() {
+            *v *= scale;
+        }
+    }
+    Scene::from_file(file).context("perturbing the gravity")
+}
+
 /// `scene` with `section.base_stiffness` set to `name`.
 pub fn with_base_stiffness(scene: &Scene, name: &str) -> anyhow::Result<Scene> {
     let mut file = scene.file.clone();
@@ -219,6 +239,10 @@ impl SceneRun<'_> {
         };
         let scene = match &self.args.base_stiffness {
             Some(b) => with_base_stiffness(&scene, b)?,
+            None => scene,
+        };
+        let scene = match self.args.perturb_gravity_ulps {
+            Some(n) => with_gravity_ulps(&scene, n)?,
             None => scene,
         };
         let opts = RunOptions {
@@ -593,6 +617,7 @@ mod tests {
             out: Some(std::env::temp_dir().join(format!("xtask-{out}-{}", std::process::id()))),
             perturb_stiffness: perturb,
             base_stiffness: None,
+            perturb_gravity_ulps: None,
         }
     }
 
