@@ -162,6 +162,38 @@ pub fn against_elastica(
 /// -q (L - s) sin(theta) of the same law: one row per point, relative to the elastica's
 /// tension there, and one for the largest difference along the strand from `tol.from` on,
 /// relative to q L.
+/// The row of the largest |T - T_elastica| / (q L) of the centreline `c` from `from` (m) on,
+/// against `limit`, named `metric`.
+pub fn tension_along(
+    scene: &str,
+    c: &Centerline,
+    r: &Solution,
+    from: f64,
+    limit: f64,
+    metric: &str,
+) -> Row {
+    let ql = r.problem.load * r.problem.length;
+    let (mut worst, mut at) = (0.0f64, f64::NAN);
+    for (s, t) in c.s.iter().zip(&c.tension) {
+        let d = (t - r.sample(*s).tension).abs();
+        if *s >= from && d > worst {
+            (worst, at) = (d, *s);
+        }
+    }
+    Row::measured(
+        scene,
+        "tension-vs-elastica",
+        metric,
+        worst / ql,
+        "",
+        Bound::AtMost(limit),
+    )
+    .with_note(format!(
+        "largest |T - T_elastica| {worst:.3e} N at s = {at:.3} m (from s = {from} m on), q L = \
+         {ql:.4} N"
+    ))
+}
+
 pub fn tension_vs_elastica(
     scene: &str,
     dir: &Path,
@@ -197,29 +229,7 @@ pub fn tension_vs_elastica(
             ))
         })
         .collect();
-    let ql = r.problem.load * r.problem.length;
-    let (mut worst, mut at) = (0.0f64, f64::NAN);
-    for (s, t) in c.s.iter().zip(&c.tension) {
-        let d = (t - r.sample(*s).tension).abs();
-        if *s >= tol.from && d > worst {
-            (worst, at) = (d, *s);
-        }
-    }
-    rows.push(
-        Row::measured(
-            scene,
-            CHECK,
-            "along",
-            worst / ql,
-            "",
-            Bound::AtMost(tol.along),
-        )
-        .with_note(format!(
-            "largest |T - T_elastica| {worst:.3e} N at s = {at:.3} m (from s = {} m on), q L = \
-             {ql:.4} N",
-            tol.from
-        )),
-    );
+    rows.push(tension_along(scene, &c, r, tol.from, tol.along, "along"));
     rows
 }
 

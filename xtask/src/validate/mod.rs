@@ -352,6 +352,9 @@ impl SceneRun<'_> {
                     &reference,
                     t,
                 ));
+                if let Some(n) = t.root_elements {
+                    rows.push(self.tension_at_the_root(&reference, t, n));
+                }
             }
             CheckSpec::EnergyBalance(t) => {
                 let dynamic: Vec<&RunSummary> = summaries
@@ -491,6 +494,37 @@ impl SceneRun<'_> {
         edit(&mut file);
         let scene = Scene::from_file(file)?;
         self.run(&scene, dir, label)
+    }
+
+    /// The tension of the equivalent model at `n` elements against the elastica along the
+    /// whole strand, root included (`TensionTol::root_elements`).
+    fn tension_at_the_root(
+        &self,
+        reference: &Result<strand_elastica::Solution, String>,
+        t: &tolerances::TensionTol,
+        n: usize,
+    ) -> Row {
+        let name = &self.scene.name;
+        let metric = format!("along from 0 at {n} elements");
+        let fail = |why: String| Row::failed(name, "tension-vs-elastica", &metric, why);
+        let r = match reference {
+            Ok(r) => r,
+            Err(e) => return fail(format!("reference: {e}")),
+        };
+        let dir = self.out.join("tension-root");
+        let label = format!("{name} tension at {n} elements");
+        let edit = |f: &mut SceneFile| {
+            if let Some(eq) = f.models.equivalent.as_mut() {
+                eq.elements = n as i64;
+            }
+        };
+        if let Err(e) = self.run_equivalent_variant(edit, &dir, &label) {
+            return fail(format!("{e:#}"));
+        }
+        match results::Centerline::load(&dir.join("equivalent")) {
+            Ok(c) => checks::tension_along(name, &c, r, 0.0, t.along, &metric),
+            Err(e) => fail(format!("{e:#}")),
+        }
     }
 
     /// Runs the equivalent model of a comparison with the fine model, changed from the

@@ -111,6 +111,11 @@ pub struct TensionTol {
     pub along: f64,
     /// Material coordinate from which the comparison along the strand runs (m).
     pub from: f64,
+    /// The whole strand, root included, compared with the same `along` limit on a run of the
+    /// equivalent model at this many elements: where the scene's mesh is too coarse at the
+    /// strongly curved root for the limit, the mesh at which it holds there.
+    #[serde(default)]
+    pub root_elements: Option<usize>,
     /// The points, with the paper's values.
     pub points: Vec<TensionPoint>,
     /// Why this limit.

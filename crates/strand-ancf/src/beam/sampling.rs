@@ -1,6 +1,7 @@
 //! Position, slope, strain and curvature of a beam at any material coordinate, not only at
 //! its integration points (for result files that run from one end of the strand to the other).
 
+use super::strain_recovery::recovery_weights;
 use super::{AXIAL_POINTS, Beam, BeamError, ElementKind};
 use crate::planar::{self, PlanarPoint};
 use crate::shape::{ShapeRow, gauss_legendre};
@@ -13,8 +14,9 @@ pub struct SectionSample {
     pub x: f64,
     /// Position (m).
     pub position: [f64; 3],
-    /// Axial strain of the element's assumed field, linear through its axial points (the
-    /// strain its section law sees).
+    /// Axial strain the section law reads there: the recovered field of module
+    /// `strain_recovery` (the parabola through the element means of three neighbouring
+    /// elements), as at the bending points, so that an end's tension is as accurate as theirs.
     pub eps: f64,
     /// Curvature `kappa_y` (1/m): zero for a planar element.
     pub kappa_y: f64,
@@ -67,13 +69,6 @@ impl Beam {
             .on_interval(0.0, l)
             .map(|(x, _)| x)
             .collect();
-        // Lagrange weights of the axial points at xl (the assumed strain).
-        let weight = |j: usize| -> f64 {
-            (0..xa.len())
-                .filter(|&k| k != j)
-                .map(|k| (xl - xa[k]) / (xa[j] - xa[k]))
-                .product()
-        };
         let row = ShapeRow::new(xl, l);
         let (position, strains, kappa_y, kappa_z) = match self.spec.element {
             ElementKind::Planar => {
@@ -109,7 +104,11 @@ impl Beam {
                 (r.into(), strains, ky, kz)
             }
         };
-        let eps = strains.iter().enumerate().map(|(j, s)| weight(j) * s).sum();
+        let (own, _, w) = recovery_weights(e, n, xl, l, &xa);
+        let means = self.other_means(q, e)?;
+        let eps = own.iter().zip(&strains).map(|(a, s)| a * s).sum::<f64>()
+            + w[0] * means[0]
+            + w[1] * means[1];
         Ok(SectionSample {
             x,
             position,
