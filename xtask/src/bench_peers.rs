@@ -31,10 +31,17 @@ pub struct BenchPeersArgs {
     /// agreement check fail.
     #[arg(long, default_value_t = 1.0, hide = true)]
     pub scale_ei: f64,
+    /// Also write the table into its page of the manual (docs/book/src/performance.md, between the
+    /// `bench-peers` markers); only for a full run.
+    #[arg(long)]
+    pub update_docs: bool,
 }
 
 /// Builds the strand side, checks for Exudyn and runs the benchmark; exits with its status.
 pub fn run(args: &BenchPeersArgs) -> anyhow::Result<()> {
+    if args.update_docs && args.scale_ei != 1.0 {
+        bail!("--update-docs writes the manual's table: drop --scale-ei");
+    }
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let python = args
         .python
@@ -98,6 +105,14 @@ pub fn run(args: &BenchPeersArgs) -> anyhow::Result<()> {
         .status()
         .context("running benchmarks/exudyn/bench_peers.py")?;
     match status.code() {
+        Some(0) if args.update_docs => {
+            let path = args.out.join("report.md");
+            let md = std::fs::read_to_string(&path)
+                .with_context(|| format!("reading {}", path.display()))?;
+            let table = crate::book::pages::first_table(&md)
+                .with_context(|| format!("{} has no table", path.display()))?;
+            crate::book::pages::update(crate::book::pages::Page::Performance, "bench-peers", &table)
+        }
         Some(0) => Ok(()),
         Some(code) => std::process::exit(code),
         None => bail!("bench_peers.py was stopped by a signal"),

@@ -8,6 +8,7 @@ use validate::report::{Report, Row};
 
 mod bench_peers;
 mod bonded;
+mod book;
 mod hard;
 mod paper;
 mod pareto;
@@ -49,6 +50,10 @@ enum Task {
     /// in interleaved runs, with the trajectories checked against each other;
     /// target/bench-peers/.
     BenchPeers(bench_peers::BenchPeersArgs),
+    /// Checks the manual's internal links and anchors (docs/book/), then builds it with
+    /// mdBook (installed into target/tools/ when no mdBook 0.5 is on the PATH) into
+    /// target/book/; fails naming the file and line of a broken link.
+    Book(book::BookArgs),
     /// The section laws' K_min (Costello's wire stiffness) against the fine model: the
     /// frictionless bending test over lay angles and frictionless cantilevers on strands that
     /// are not the paper's, each converged in segments per pitch; target/stiffness/. Fails on
@@ -66,6 +71,7 @@ fn main() -> anyhow::Result<()> {
         Task::BenchPeers(args) => bench_peers::run(&args),
         Task::Stiffness(args) => stiffness_and_exit(&args),
         Task::Bonded(args) => bonded_and_exit(&args),
+        Task::Book(args) => book::run(&args),
     }
 }
 
@@ -143,6 +149,8 @@ fn check() -> anyhow::Result<()> {
         &[("RUSTDOCFLAGS", "-D warnings")],
     )?;
     cargo(&["test", "--workspace", "--release"], &[])?;
+    println!("== cargo xtask book");
+    book::run(&book::BookArgs::default())?;
     println!("== cargo xtask validate --quick");
     validate_and_exit(&validate::ValidateArgs {
         quick: true,

@@ -40,6 +40,10 @@ pub struct StiffnessArgs {
     /// Folder of the report and the runs [default: target/stiffness].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Also write the table into its page of the manual (docs/book/src/validation.md, between the
+    /// `stiffness` markers); only for a full run.
+    #[arg(long)]
+    pub update_docs: bool,
 }
 
 /// Lay angles of the bending test (deg).
@@ -60,6 +64,9 @@ const ELEMENTS: [usize; 2] = [32, 64];
 
 /// Runs the study and writes the report; the caller decides the exit status.
 pub fn run(args: &StiffnessArgs) -> anyhow::Result<Report> {
+    if args.update_docs && args.quick {
+        anyhow::bail!("--update-docs writes the manual's table from a full run: drop --quick");
+    }
     let t0 = Instant::now();
     let root = repo_root();
     let out = args
@@ -89,6 +96,13 @@ pub fn run(args: &StiffnessArgs) -> anyhow::Result<Report> {
     )
     .titled("Base stiffness report", "study", "xtask/src/stiffness.rs");
     report.write(&out)?;
+    if args.update_docs {
+        crate::book::pages::update(
+            crate::book::pages::Page::Validation,
+            "stiffness",
+            &report.docs(),
+        )?;
+    }
     Ok(report)
 }
 

@@ -362,7 +362,7 @@ impl Scene {
         let analysis = analysis(&file.analysis)?;
         // A dynamic run defaults to the only energetically consistent stick/slip law: the
         // moment of `continuous` and `paper` depends on the tension without a potential, so
-        // their non-potential work can feed energy in (README, the `continuous` finding).
+        // their non-potential work can feed energy in (the manual, docs/book/src/findings.md).
         let law = law.unwrap_or(match analysis {
             Analysis::Static { .. } => LawKind::Continuous,
             Analysis::Dynamic(_) => LawKind::Hysteretic,

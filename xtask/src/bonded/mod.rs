@@ -48,6 +48,10 @@ pub struct BondedArgs {
     /// Folder of the report [default: target/bonded].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Also write the table into its page of the manual (docs/book/src/validation.md, between the
+    /// `bonded` markers); only for a full run.
+    #[arg(long)]
+    pub update_docs: bool,
 }
 
 /// Limits of the study and their reasons (`validation/bonded/criteria.json`).
@@ -415,6 +419,11 @@ fn study(sname: &str, strand: &Strand, load: &Loading, v: &Variant) -> anyhow::R
 
 /// Runs the study and writes the report; the caller decides the exit status.
 pub fn run(args: &BondedArgs) -> anyhow::Result<Report> {
+    if args.update_docs && (args.quick || args.variant.is_some()) {
+        anyhow::bail!(
+            "--update-docs writes the manual's table from a full run: drop --quick and --variant"
+        );
+    }
     let t0 = Instant::now();
     let root = repo_root();
     let path = root.join("validation/bonded/criteria.json");

@@ -37,6 +37,10 @@ pub struct HardArgs {
     /// Folder of the report and the runs [default: target/hard].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Also write the table into its page of the manual (docs/book/src/validation.md, between the
+    /// `hard` markers); only for a full run.
+    #[arg(long)]
+    pub update_docs: bool,
 }
 
 /// A case: it measures and returns its rows (judged with [`Ctx::check`]).
@@ -147,6 +151,11 @@ fn load_scenes(dir: &Path) -> anyhow::Result<BTreeMap<String, Scene>> {
 
 /// Runs the selected cases and writes the report; the caller decides the exit status.
 pub fn run(args: &HardArgs) -> anyhow::Result<Report> {
+    if args.update_docs && (args.quick || args.case.is_some()) {
+        anyhow::bail!(
+            "--update-docs writes the manual's table from a full run: drop --quick and --case"
+        );
+    }
     let t0 = Instant::now();
     let root = repo_root();
     let dir = root.join("validation").join("hard");
@@ -218,6 +227,9 @@ pub fn run(args: &HardArgs) -> anyhow::Result<Report> {
     )
     .titled("Hard cases report", "case", "validation/hard/criteria.json");
     report.write(&out)?;
+    if args.update_docs {
+        crate::book::pages::update(crate::book::pages::Page::Validation, "hard", &report.docs())?;
+    }
     Ok(report)
 }
 
@@ -252,6 +264,7 @@ mod tests {
             out: Some(
                 std::env::temp_dir().join(format!("xtask-hard-{name}-{}", std::process::id())),
             ),
+            update_docs: false,
         };
         let report = run(&args).unwrap();
         let failed: Vec<String> = report

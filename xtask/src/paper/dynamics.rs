@@ -270,7 +270,7 @@ pub fn figures(run: &SceneRun, figs: &mut Figures) -> anyhow::Result<Vec<Finding
         format!(
             "the scene uses the `{law}` law: Coulomb sliders that only dissipate. The paper's \
              law (and our `continuous` one) makes the moment depend on tension without a \
-             potential, so in dynamics it can feed energy in instead (see the README's finding)"
+             potential, so in dynamics it can feed energy in instead (see the manual's Findings)"
         ),
     ));
     findings.push(Finding::new(

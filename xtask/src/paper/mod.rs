@@ -10,7 +10,7 @@ mod statics;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{Context, bail};
+use anyhow::Context;
 use indicatif::ProgressBar;
 use strand_scene::{RunOptions, RunSummary, Scene, run_scene};
 
@@ -25,12 +25,13 @@ pub struct PaperArgs {
     /// Folder of the figures, the report and the runs [default: target/paper].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-    /// Also copy the figures the README shows into docs/.
+    /// Also write the findings table into the manual (docs/book/src/validation.md, between
+    /// the `paper` markers) and copy the figures it shows into docs/book/src/figures/.
     #[arg(long)]
     pub update_docs: bool,
 }
 
-/// The figures the README shows (file stems in the output folder).
+/// The figures the manual shows (file stems in the output folder).
 const DOCS_FIGURES: [&str; 3] = ["fig09-shapes", "fig10-stiffness", "fig14-tip"];
 
 /// What became of one model of a scene.
@@ -257,24 +258,13 @@ pub fn run(args: &PaperArgs) -> anyhow::Result<()> {
     };
     let files = report.write(&out)?;
     if args.update_docs {
-        copy_to_docs(&out, &DOCS_FIGURES)?;
+        crate::book::pages::copy_figures(&out, &DOCS_FIGURES)?;
+        crate::book::pages::update(
+            crate::book::pages::Page::Validation,
+            "paper",
+            &report.docs(),
+        )?;
     }
     println!("report: {}", files[0].display());
-    Ok(())
-}
-
-/// Copies `out/STEM.png` for each stem into the repository's docs/ folder.
-pub(crate) fn copy_to_docs(out: &Path, stems: &[&str]) -> anyhow::Result<()> {
-    let docs = repo_root().join("docs");
-    std::fs::create_dir_all(&docs).with_context(|| format!("creating {}", docs.display()))?;
-    for stem in stems {
-        let from = out.join(format!("{stem}.png"));
-        if !from.exists() {
-            bail!("{} was not drawn", from.display());
-        }
-        let to = docs.join(format!("{stem}.png"));
-        std::fs::copy(&from, &to).with_context(|| format!("copying to {}", to.display()))?;
-        println!("updated {}", to.display());
-    }
     Ok(())
 }

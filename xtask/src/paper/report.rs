@@ -86,6 +86,17 @@ fn cell(s: &str) -> String {
 }
 
 impl PaperReport {
+    /// The findings for the manual (`--update-docs`): the report's Markdown from its
+    /// provenance line to the end of the findings table, without its title and figures.
+    pub fn docs(&self) -> String {
+        let md = self.markdown();
+        let body = md.split("\n## Figures").next().unwrap_or(&md);
+        body.lines()
+            .skip_while(|l| !l.starts_with('`'))
+            .collect::<Vec<_>>()
+            .join("\n")
+    }
+
     /// The report as Markdown.
     pub fn markdown(&self) -> String {
         let p = &self.provenance;

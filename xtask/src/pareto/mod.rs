@@ -23,7 +23,7 @@ use anyhow::Context;
 use strand_scene::format::{BeamModelFile, FineModelFile, ModelsFile};
 use strand_scene::{Analysis, Scene};
 
-use crate::paper::{copy_to_docs, load_scene, run_into};
+use crate::paper::{load_scene, run_into};
 use crate::validate::machine::Provenance;
 use crate::validate::{progress_bar, repo_root, with_base_stiffness};
 use metrics::median;
@@ -66,7 +66,8 @@ pub struct ParetoArgs {
     /// The distance X (m) of the dynamic headline [default: as for statics].
     #[arg(long, value_name = "M")]
     pub target_dynamic: Option<f64>,
-    /// Also copy the plots the README shows into docs/.
+    /// Also write the report into the manual (docs/book/src/performance.md, between the
+    /// `pareto` markers) and copy its plots into docs/book/src/figures/.
     #[arg(long)]
     pub update_docs: bool,
 }
@@ -448,7 +449,12 @@ pub fn run(args: &ParetoArgs) -> anyhow::Result<()> {
     let path = report.write(&out)?;
     println!("{}", report.headlines().join("\n"));
     if args.update_docs {
-        copy_to_docs(&out, &["pareto-static", "pareto-dynamic"])?;
+        crate::book::pages::copy_figures(&out, &["pareto-static", "pareto-dynamic"])?;
+        crate::book::pages::update(
+            crate::book::pages::Page::Performance,
+            "pareto",
+            &report.docs(),
+        )?;
     }
     println!("report: {}", path.display());
     Ok(())

@@ -402,6 +402,23 @@ impl ParetoReport {
         self.cases.iter().map(|c| c.headline.clone()).collect()
     }
 
+    /// The report for the manual (`--update-docs`): its Markdown without the title, each
+    /// scene's heading two levels down (the page's own headings stay above it).
+    pub fn docs(&self) -> String {
+        self.markdown()
+            .lines()
+            .skip(1)
+            .map(|l| {
+                if l.starts_with("## ") {
+                    format!("##{l}")
+                } else {
+                    l.to_string()
+                }
+            })
+            .collect::<Vec<_>>()
+            .join("\n")
+    }
+
     /// The report as Markdown.
     pub fn markdown(&self) -> String {
         let p = &self.provenance;

@@ -20,6 +20,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use strand_scene::format::SceneFile;
 use strand_scene::{Analysis, RunOptions, RunSummary, Scene, run_scene};
 
+use crate::book::pages::Page;
 use crate::pareto::metrics::Tip;
 use checks::BeamKind;
 use machine::Provenance;
@@ -55,6 +56,10 @@ pub struct ValidateArgs {
     /// an input moves each stored result (the argument of the golden tolerances).
     #[arg(long, value_name = "N")]
     pub perturb_gravity_ulps: Option<u32>,
+    /// Also write the table into its page of the manual (docs/book/src/validation.md, between the
+    /// `validate` markers); only for a full run.
+    #[arg(long)]
+    pub update_docs: bool,
 }
 
 /// The repository root (the parent of `xtask/`).
@@ -68,6 +73,17 @@ pub fn repo_root() -> PathBuf {
 /// Runs the validation and writes the report; the caller decides the exit status from
 /// [`Report::failed`].
 pub fn run(args: &ValidateArgs) -> anyhow::Result<Report> {
+    if args.update_docs
+        && (args.quick
+            || args.scene.is_some()
+            || args.perturb_stiffness.is_some()
+            || args.perturb_gravity_ulps.is_some()
+            || args.base_stiffness.is_some())
+    {
+        bail!(
+            "--update-docs writes the manual's table from a full run: drop --quick, --scene, --perturb-stiffness, --perturb-gravity-ulps and --base-stiffness"
+        );
+    }
     let t0 = Instant::now();
     let root = repo_root();
     if let Some(f) = args.perturb_stiffness {
@@ -141,6 +157,9 @@ pub fn run(args: &ValidateArgs) -> anyhow::Result<Report> {
     bar.finish_and_clear();
     let report = Report::new(provenance, args.quick, t0.elapsed().as_secs_f64(), rows);
     report.write(&out)?;
+    if args.update_docs {
+        crate::book::pages::update(Page::Validation, "validate", &report.docs())?;
+    }
     Ok(report)
 }
 
@@ -652,6 +671,7 @@ mod tests {
             perturb_stiffness: perturb,
             base_stiffness: None,
             perturb_gravity_ulps: None,
+            update_docs: false,
         }
     }
 

@@ -369,6 +369,23 @@ impl Report {
         )
     }
 
+    /// The report's table for the manual (`--update-docs`): one line of provenance and the
+    /// table of [`Report::markdown`], without its title, notes and reasons.
+    pub fn docs(&self) -> String {
+        let p = &self.provenance;
+        let md = self.markdown();
+        let table = crate::book::pages::first_table(&md).unwrap_or_default();
+        format!(
+            "`{}` (commit `{}`, {}, {} build, {}): {}.\n\n{table}",
+            p.command,
+            p.commit,
+            p.date,
+            p.profile,
+            p.machine.description(),
+            self.summary_line()
+        )
+    }
+
     /// The report as Markdown.
     pub fn markdown(&self) -> String {
         let p = &self.provenance;
