@@ -1,7 +1,9 @@
 //! The check of the book's internal links: every relative link and image of every page
 //! resolves to a file of the book's source (a page must be a chapter of `SUMMARY.md`, or mdBook
 //! does not render it), and every `#anchor` to a heading of the page it names, with the ids
-//! mdBook gives headings (`mdbook-html`'s `id_from_content` and `unique_id`).
+//! mdBook gives headings (`mdbook-html`'s `id_from_content` and `unique_id`). The repository's
+//! `README.md` is checked the same way against the repository's files ([`check_readme`]): its
+//! links into the book are what a reader of the repository's web view follows first.
 
 use std::collections::{BTreeMap, HashSet};
 use std::path::{Component, Path, PathBuf};
@@ -309,6 +311,96 @@ pub fn check(src: &Path) -> anyhow::Result<Check> {
     Ok(result)
 }
 
+/// Checks the relative links and images of the Markdown file `file` (a path under `root`, the
+/// repository) against the files under `root`: each must name a file of the repository
+/// (relative to `file`'s folder, not leaving `root`), and each `#anchor` a heading of the
+/// Markdown file it names (or of `file` itself), with mdBook's heading ids. Anchors into pages
+/// of the book under `book_src` are returned in [`Check::anchors`] (paths under `book_src`),
+/// for the check against the rendered book.
+pub fn check_file(root: &Path, file: &Path, book_src: &Path) -> anyhow::Result<Check> {
+    let path = root.join(file);
+    let text =
+        std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
+    let own = scan(&text);
+    let dir = file.parent().unwrap_or(Path::new(""));
+    let book_rel = book_src.strip_prefix(root).ok().map(Path::to_path_buf);
+    let mut result = Check::default();
+    for link in &own.links {
+        if is_external(&link.target) {
+            continue;
+        }
+        result.links += 1;
+        let broken = |why: String| Broken {
+            page: file.to_path_buf(),
+            line: link.line,
+            target: link.target.clone(),
+            why,
+        };
+        let (target, anchor) = match link.target.split_once('#') {
+            Some((p, a)) => (p, Some(a)),
+            None => (link.target.as_str(), None),
+        };
+        if target.starts_with('/') {
+            result.broken.push(broken(
+                "an absolute path: write it relative to the file".into(),
+            ));
+            continue;
+        }
+        let target = if target.is_empty() {
+            Some(file.to_path_buf())
+        } else {
+            normalize(&dir.join(target))
+        };
+        let Some(target) = target else {
+            result.broken.push(broken("leaves the repository".into()));
+            continue;
+        };
+        let on_disk = root.join(&target);
+        if !on_disk.exists() {
+            result
+                .broken
+                .push(broken(format!("no file {}", target.display())));
+            continue;
+        }
+        let Some(id) = anchor else { continue };
+        if target.extension().is_none_or(|e| e != "md") || !on_disk.is_file() {
+            result
+                .broken
+                .push(broken("an anchor on a file that is not Markdown".into()));
+            continue;
+        }
+        let ids = if target == file {
+            own.ids.clone()
+        } else {
+            let text = std::fs::read_to_string(&on_disk)
+                .with_context(|| format!("reading {}", on_disk.display()))?;
+            scan(&text).ids
+        };
+        if !ids.iter().any(|i| i == id) {
+            result.broken.push(broken(format!(
+                "no heading with id `{id}` in {}",
+                target.display()
+            )));
+        } else if let Some(page) = book_rel
+            .as_deref()
+            .and_then(|b| target.strip_prefix(b).ok())
+        {
+            result.anchors.push(Anchor {
+                page: page.to_path_buf(),
+                id: id.to_string(),
+            });
+        }
+    }
+    result.anchors.sort();
+    result.anchors.dedup();
+    Ok(result)
+}
+
+/// [`check_file`] on the repository's `README.md`.
+pub fn check_readme(root: &Path, book_src: &Path) -> anyhow::Result<Check> {
+    check_file(root, Path::new("README.md"), book_src)
+}
+
 /// The anchors of `anchors` that the rendered book in `html` does not carry as an `id`: a
 /// check of [`id_from_content`] against mdBook itself.
 pub fn missing_in_html(html: &Path, anchors: &[Anchor]) -> anyhow::Result<Vec<Anchor>> {
@@ -405,6 +497,67 @@ mod tests {
         );
         assert_eq!(result.links, 10);
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// A small repository in a temporary folder: the README's links to files, to headings of
+    /// the book's pages and of its own, good and broken, each broken one with its line.
+    #[test]
+    fn readme_links_are_checked_against_the_repository() {
+        let dir = std::env::temp_dir().join(format!("strand-readme-links-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let src = dir.join("docs/book/src");
+        std::fs::create_dir_all(src.join("figures")).unwrap();
+        std::fs::write(src.join("SUMMARY.md"), "# Summary\n\n- [A](a.md)\n").unwrap();
+        std::fs::write(src.join("a.md"), "# A page\n\n## `strand run`: the job\n").unwrap();
+        std::fs::write(src.join("figures/f.png"), b"png").unwrap();
+        std::fs::write(dir.join("CHANGELOG.md"), "# Changelog\n").unwrap();
+        std::fs::write(
+            dir.join("README.md"),
+            "# strand\n\n## Quick start\n\n\
+             [ok](docs/book/src/a.md#strand-run-the-job)\n\
+             ![ok](docs/book/src/figures/f.png)\n[ok](CHANGELOG.md) [ok](#quick-start)\n\
+             [ok](docs/book/) [ok](https://example.org/x.md#y)\n\
+             [bad anchor](docs/book/src/a.md#the-job)\n[no file](docs/book/src/b.md)\n\
+             [own anchor](#quick)\n[outside](../x.md)\n[absolute](/CHANGELOG.md)\n\
+             [anchor on a figure](docs/book/src/figures/f.png#x)\n",
+        )
+        .unwrap();
+        let result = check_readme(&dir, &src).unwrap();
+        let got: Vec<String> = result.broken.iter().map(|b| b.to_string()).collect();
+        assert_eq!(
+            got,
+            [
+                "README.md:9: broken link `docs/book/src/a.md#the-job`: no heading with id \
+                 `the-job` in docs/book/src/a.md",
+                "README.md:10: broken link `docs/book/src/b.md`: no file docs/book/src/b.md",
+                "README.md:11: broken link `#quick`: no heading with id `quick` in README.md",
+                "README.md:12: broken link `../x.md`: leaves the repository",
+                "README.md:13: broken link `/CHANGELOG.md`: an absolute path: write it \
+                 relative to the file",
+                "README.md:14: broken link `docs/book/src/figures/f.png#x`: an anchor on a \
+                 file that is not Markdown",
+            ]
+        );
+        assert_eq!(result.links, 11);
+        assert_eq!(
+            result.anchors,
+            [Anchor {
+                page: PathBuf::from("a.md"),
+                id: "strand-run-the-job".into()
+            }]
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// The repository's README has no broken link (what `cargo xtask book` checks, here in the
+    /// default test suite).
+    #[test]
+    fn the_readmes_links_resolve() {
+        let root = crate::validate::repo_root();
+        let result = check_readme(&root, &super::super::pages::book_src()).unwrap();
+        let broken: Vec<String> = result.broken.iter().map(|b| b.to_string()).collect();
+        assert!(broken.is_empty(), "{}", broken.join("\n"));
+        assert!(result.links > 0 && !result.anchors.is_empty());
     }
 
     /// The book in the repository has no broken link (what `cargo xtask book` checks before it

@@ -1,5 +1,5 @@
-//! `cargo xtask book`: checks the manual's internal links and builds it with mdBook into
-//! `target/book/`. The manual's source is `docs/book/` (`book.toml`, `src/SUMMARY.md`).
+//! `cargo xtask book`: checks the manual's internal links and `README.md`'s relative links,
+//! and builds the manual with mdBook into `target/book/`. The manual's source is `docs/book/` (`book.toml`, `src/SUMMARY.md`).
 
 pub mod links;
 pub mod pages;
@@ -32,21 +32,32 @@ fn target_dir() -> PathBuf {
     )
 }
 
-/// Checks the links, then builds the book; fails naming the file and line of each broken link.
+/// Checks the book's and the README's links, then builds the book; fails naming the file and
+/// line of each broken link.
 pub fn run(args: &BookArgs) -> anyhow::Result<()> {
     let src = pages::book_src();
-    let result = links::check(&src)?;
-    if !result.broken.is_empty() {
-        for b in &result.broken {
-            eprintln!("docs/book/src/{b}");
-        }
-        bail!("{} broken link(s) in the book", result.broken.len());
+    let mut result = links::check(&src)?;
+    let readme = links::check_readme(&crate::validate::repo_root(), &src)?;
+    for b in &result.broken {
+        eprintln!("docs/book/src/{b}");
+    }
+    for b in &readme.broken {
+        eprintln!("{b}");
+    }
+    let broken = result.broken.len() + readme.broken.len();
+    if broken > 0 {
+        bail!("{broken} broken link(s) in the book and README.md");
     }
     println!(
-        "book: {} internal links and {} anchors resolve",
+        "book: {} internal links and {} anchors resolve; README.md: {} relative links",
         result.links,
-        result.anchors.len()
+        result.anchors.len(),
+        readme.links
     );
+    // The README's anchors into the book are checked against the rendered pages too.
+    result.anchors.extend(readme.anchors);
+    result.anchors.sort();
+    result.anchors.dedup();
     if args.check_only {
         return Ok(());
     }
