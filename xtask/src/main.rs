@@ -50,7 +50,8 @@ enum Task {
     /// in interleaved runs, with the trajectories checked against each other;
     /// target/bench-peers/.
     BenchPeers(bench_peers::BenchPeersArgs),
-    /// Checks the manual's internal links and anchors (docs/book/), then builds it with
+    /// Checks the manual's internal links and anchors (docs/book/) and README.md's relative
+    /// links and anchors, then builds the manual with
     /// mdBook (installed into target/tools/ when no mdBook 0.5 is on the PATH) into
     /// target/book/; fails naming the file and line of a broken link.
     Book(book::BookArgs),
