@@ -133,3 +133,17 @@ def test_sweep_on_a_dask_local_cluster(pendulum, tmp_path):
     cols = ["tip_x", "tip_y", "tip_z", "energy_balance_error", "dissipated", "steps"]
     assert np.array_equal(df[cols].to_numpy(), ref[cols].to_numpy())
     assert (tmp_path / "d" / "results.jsonl").read_text().count("\n") == 4
+
+
+def test_sweep_on_ray_where_installed(pendulum):
+    """Ray is optional (not a test dependency of .ci/run): skipped where it is not installed."""
+    ray = pytest.importorskip("ray")
+    ref = strand.sweep(pendulum, AXES, executor=ThreadPoolExecutor(1))
+    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False)
+    try:
+        df = strand.sweep(pendulum, AXES, executor="ray")
+    finally:
+        ray.shutdown()
+    cols = ["tip_x", "tip_y", "tip_z", "energy_balance_error", "dissipated", "steps"]
+    assert (df["status"] == "ok").all()
+    assert np.array_equal(df[cols].to_numpy(), ref[cols].to_numpy())

@@ -9,6 +9,7 @@ import itertools
 import json
 import multiprocessing
 import os
+import tempfile
 import time
 import traceback
 from pathlib import Path
@@ -70,12 +71,14 @@ def run_point(
 ) -> Dict[str, Any]:
     """Runs one point (in a worker) and returns its record: the models' summaries, or the
     error that stopped it. Never raises: a failure is a record."""
-    from .results import run
-
     start = time.perf_counter()
     try:
-        result = run(Scene(scene), models=list(models), out=files, threads=threads, max_steps=max_steps)
-        return {"summaries": list(result.summary.values()), "wall_time_s": time.perf_counter() - start}
+        # The runner alone: a sweep keeps the summaries, so the result files are not read
+        # back into DataFrames (they stay in `files` when asked for).
+        core = Scene(scene)._core
+        with tempfile.TemporaryDirectory(prefix="strand-point-") as tmp:
+            texts = core.run(files or tmp, list(models), False, max_steps, threads, None)
+        return {"summaries": [json.loads(t) for t in texts], "wall_time_s": time.perf_counter() - start}
     except Exception as e:  # the point fails, the sweep goes on
         return {
             "error": f"{type(e).__name__}: {e}",
