@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import strand
-from strand.section import section_point
+from strand import section_point
 
 LAWS = ["continuous", "paper", "hysteretic", "constant"]
 
