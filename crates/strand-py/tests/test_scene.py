@@ -61,3 +61,38 @@ def test_keywords_dicts_files_and_edits(static_scene, scene_file):
     assert u.name == "renamed"
     with pytest.raises(strand.SceneError, match="^name: must not be empty"):
         strand.Scene(static_scene, name=" ")
+
+
+def _leaves(node, path=""):
+    """Every (field path, value) of a scene dict down to its numbers and strings."""
+    if isinstance(node, dict):
+        for k, v in node.items():
+            yield from _leaves(v, f"{path}.{k}" if path else k)
+    elif isinstance(node, list):
+        for i, v in enumerate(node):
+            yield from _leaves(v, f"{path}[{i}]")
+    else:
+        yield path, node
+
+
+def test_field_paths_reach_every_value_and_only_those(static_scene, dynamic_scene):
+    """Property over every leaf of two scenes: the path of a value gets it back, setting it
+    changes that value alone, and a path with a wrong separator is rejected."""
+    for d in (static_scene, dynamic_scene):
+        leaves = list(_leaves(d))
+        assert len(leaves) > 20
+        for path, value in leaves:
+            assert strand.scene.get_field(d, path) == value
+            e = strand.Scene(d).to_dict()
+            strand.scene.set_field(e, path, "marker")
+            changed = [p for p, v in _leaves(e) if v == "marker"]
+            assert changed == [path]
+            if "." in path:
+                with pytest.raises(ValueError, match="not a field path"):
+                    strand.scene.parse_field_path(path.replace(".", "..", 1))
+            if "]." in path:  # a name straight after an index, without its dot
+                with pytest.raises(ValueError, match="not a field path"):
+                    strand.scene.parse_field_path(path.replace("].", "]", 1))
+            if path.endswith("]"):
+                with pytest.raises(ValueError, match="not a field path"):
+                    strand.scene.parse_field_path(path + "x")

@@ -15,22 +15,24 @@ from ._strand import SceneError
 
 PathLike = Union[str, "os.PathLike[str]"]
 
-_STEP = re.compile(r"\.?([A-Za-z_][A-Za-z0-9_]*)|\[(\d+)\]")
+_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+_STEP = re.compile(r"\.([A-Za-z_][A-Za-z0-9_]*)|\[(\d+)\]")
 
 
 def parse_field_path(path: str) -> List[Union[str, int]]:
     """The steps of a field path: ``"strand.layers[0].lay_angle_deg"`` gives
     ``["strand", "layers", 0, "lay_angle_deg"]``. Raises ``ValueError`` on a malformed path."""
-    steps: List[Union[str, int]] = []
-    pos = 0
+    first = _NAME.match(path)
+    if first is None:
+        raise ValueError(f"{path}: not a field path (expected e.g. strand.layers[0].wires)")
+    steps: List[Union[str, int]] = [first.group(0)]
+    pos = first.end()
     while pos < len(path):
         m = _STEP.match(path, pos)
-        if m is None or (pos == 0 and path.startswith(".")):
+        if m is None:
             raise ValueError(f"{path}: not a field path (expected e.g. strand.layers[0].wires)")
         steps.append(m.group(1) if m.group(1) is not None else int(m.group(2)))
         pos = m.end()
-    if not steps:
-        raise ValueError("an empty field path")
     return steps
 
 
@@ -97,6 +99,8 @@ class Scene:
     __slots__ = ("_data", "_core", "_summary")
 
     def __init__(self, data: Optional[Mapping[str, Any]] = None, /, **fields: Any) -> None:
+        if isinstance(data, Scene):
+            data = data._data
         merged: Dict[str, Any] = copy.deepcopy(dict(data)) if data is not None else {}
         merged.update(copy.deepcopy(fields))
         self._data = merged
