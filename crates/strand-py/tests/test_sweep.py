@@ -10,6 +10,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import strand
@@ -81,6 +82,8 @@ def test_keep_files_and_resume_in_process(pendulum, tmp_path):
     df2 = strand.sweep(pendulum, AXES, out_dir=out, keep_files=True, executor=ThreadPoolExecutor(2), on_point=again.append)
     assert again == []  # nothing ran again
     assert df2.equals(df)
+    table = pd.read_csv(out / "results.csv")
+    assert list(table["tip_y"]) == list(df["tip_y"]) and list(table["key"]) == list(df["key"])
     # One more lay angle: only its two points run.
     more = dict(AXES, **{"strand.layers[0].lay_angle_deg": [12.0, 20.0, 16.0]})
     df3 = strand.sweep(pendulum, more, out_dir=out, executor=ThreadPoolExecutor(2), on_point=again.append)

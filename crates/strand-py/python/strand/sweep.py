@@ -23,6 +23,9 @@ from .scene import PathLike, Scene
 #: The file of finished points in ``out_dir``: one JSON object per line, one line per point.
 RESULTS_FILE = "results.jsonl"
 
+#: The table of the whole sweep in ``out_dir``, written when it ends (the DataFrame returned).
+TABLE_FILE = "results.csv"
+
 #: The summary figures of a point's row, per model (from its ``summary.json``).
 FIGURES = (
     "steps",
@@ -282,7 +285,8 @@ def sweep(
     ``out_dir``: each finished point is appended to ``out_dir/results.jsonl`` as it completes
     (with ``keep_files``, its files go to ``out_dir/points/<key>/``, which a cluster's workers
     must be able to reach); a sweep run again with the same ``out_dir`` reads it and runs only
-    the points not finished. ``on_point(rows)`` is called with each finished point's rows.
+    the points not finished. The whole table is also written to ``out_dir/results.csv`` at the
+    end. ``on_point(rows)`` is called with each finished point's rows.
     """
     sc = Scene.coerce(base)
     names = [models] if isinstance(models, str) else list(models or [])
@@ -354,4 +358,7 @@ def sweep(
     for i, key in enumerate(keys):
         rec = records[first[key]]
         rows.extend(_rows(i, key, plan[i], rec))
-    return pd.DataFrame(rows)
+    df = pd.DataFrame(rows)
+    if out is not None:
+        df.to_csv(out / TABLE_FILE, index=False)
+    return df
