@@ -182,6 +182,41 @@ mod tests {
         }
     }
 
+    proptest::proptest! {
+        /// Any batch, any law: every point is the scalar law from its own state, bit for bit
+        /// (runs of equal x share a station, as in a sweep over curvature at one station).
+        #[test]
+        fn any_batch_is_the_scalar_law(
+            kind in proptest::sample::select(vec![
+                LawKind::Continuous, LawKind::Paper, LawKind::Hysteretic, LawKind::Constant,
+            ]),
+            points in proptest::collection::vec(
+                (-2e-3f64..4e-3, -2.0f64..2.0, 0usize..4, -1e-4f64..1e-4), 1..40),
+        ) {
+            let strand = strand();
+            let law = SectionLaw::new(&strand, kind);
+            let n = law.state_len();
+            let e: Vec<f64> = points.iter().map(|p| p.0).collect();
+            let k: Vec<f64> = points.iter().map(|p| p.1).collect();
+            let x: Vec<f64> = points.iter().map(|p| p.2 as f64 * 0.7).collect();
+            let s: Vec<f64> = points
+                .iter()
+                .flat_map(|p| (0..n).map(move |j| if j < n.saturating_sub(2) { p.3 } else { 0.0 }))
+                .collect();
+            let got = run(&law, &e, &k, &x, &s);
+            for i in 0..points.len() {
+                let st = law.station(x[i]);
+                let mut trial = vec![0.0; n];
+                let r = law.planar(&st, e[i], k[i], &s[i * n..(i + 1) * n], &mut trial);
+                proptest::prop_assert_eq!(got.0[1][i].to_bits(), r.moment.to_bits());
+                proptest::prop_assert_eq!(got.0[2][i].to_bits(), r.moment_curvature.to_bits());
+                proptest::prop_assert_eq!(got.0[3][i].to_bits(), r.energy.to_bits());
+                proptest::prop_assert_eq!(got.0[4][i].to_bits(), r.slip_work.to_bits());
+                proptest::prop_assert_eq!(&got.1[i * n..(i + 1) * n], &trial[..]);
+            }
+        }
+    }
+
     #[test]
     fn rejects_mismatched_and_non_finite_inputs() {
         let law = SectionLaw::new(&strand(), LawKind::Continuous);
