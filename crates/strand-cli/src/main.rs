@@ -274,34 +274,15 @@ fn run_scene(
         anyhow::ensure!(n >= 1, "--max-steps must be at least 1");
         scene.max_steps = n;
     }
-    if !only.is_empty() {
-        for m in only {
-            let named = match m.as_str() {
-                "equivalent" => scene.models.equivalent.is_some(),
-                "traditional" => scene.models.traditional.is_some(),
-                "fine" => scene.models.fine.is_some(),
-                other => anyhow::bail!(
-                    "--model {other}: unknown model (expected equivalent, traditional or fine)"
-                ),
-            };
-            if !named {
-                anyhow::bail!(
-                    "--model {m}: the scene {} has no models.{m}",
-                    path.display()
-                );
-            }
+    scene.models.keep_only(only).map_err(|e| match e {
+        strand_scene::ModelSelectionError::Unknown(_) => anyhow::anyhow!("--model {e}"),
+        strand_scene::ModelSelectionError::Absent(m) => {
+            anyhow::anyhow!(
+                "--model {m}: the scene {} has no models.{m}",
+                path.display()
+            )
         }
-        let keep = |m: &str| only.iter().any(|o| o == m);
-        if !keep("equivalent") {
-            scene.models.equivalent = None;
-        }
-        if !keep("traditional") {
-            scene.models.traditional = None;
-        }
-        if !keep("fine") {
-            scene.models.fine = None;
-        }
-    }
+    })?;
     let mut progress = Progress::new();
     let opts = strand_scene::RunOptions {
         out: out.clone(),

@@ -8,6 +8,8 @@ pub mod format;
 pub mod output;
 mod run;
 mod scene;
+pub mod section_batch;
+mod selection;
 
 pub use bending::{BendingOptions, BendingSummary, run_bending};
 pub use run::{
@@ -19,3 +21,4 @@ pub use scene::{
     MAX_MOTION_ROWS, MAX_POINT_FORCES, MEMORY_LIMIT, Models, Scene, SceneError, Support,
     SupportKind, beam_memory, fine_memory,
 };
+pub use selection::{MODEL_NAMES, ModelSelectionError};
