@@ -4,7 +4,7 @@ Runs the statics of examples/nylon-1x8-hanging.json (equivalent model) at every 
 of wire-core friction and lay angle on local processes, keeps each point's files, and plots
 the bending stiffness along the cantilever against its curvature (from each point's
 centerline.csv), the section law's secant stiffness over the same curvatures at a strain of
-1e-3 (strand.section over NumPy arrays, averaged over one pitch), and the tip deflection. Writes the picture to docs/python-friction-sweep.png
+1e-3 (strand.section over NumPy arrays, averaged over one pitch), and the tip deflection. Writes the picture to docs/book/src/figures/python-friction-sweep.png
 (or the path given) and prints the sweep's table. A second run with the same folder reuses the
 finished points.
 
@@ -30,7 +30,7 @@ LAY_ANGLE = [12.0, 20.0]
 
 
 def main() -> None:
-    png = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "docs" / "python-friction-sweep.png"
+    png = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "docs" / "book" / "src" / "figures" / "python-friction-sweep.png"
     base = strand.Scene.from_file(ROOT / "examples" / "nylon-1x8-hanging.json")
     out = ROOT / "out" / "friction-sweep"
     df = strand.sweep(

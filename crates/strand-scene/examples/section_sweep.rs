@@ -1,5 +1,5 @@
 //! Times a 1,000-point sweep of the section law in Rust, the reference for the same sweep
-//! called from Python (`docs/python.md`, speed):
+//! called from Python (the manual's Python page, speed):
 //!
 //! ```text
 //! cargo run --release -p strand-scene --example section_sweep -- examples/nylon-1x8-hanging.json
