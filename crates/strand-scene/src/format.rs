@@ -43,7 +43,8 @@ pub struct SceneFile {
 #[serde(deny_unknown_fields)]
 pub struct OutputFile {
     /// Probes: material coordinates s (m, in [0, L]) at which every model writes
-    /// `probe_<s>.csv`, the time history of the strand there.
+    /// `probe_<s>.csv`, the time history of the strand there. Default: midspan for a strand
+    /// supported at both ends, else none (`[]` for none).
     #[serde(default)]
     pub probes: Option<Vec<f64>>,
     /// Dynamic: the time window `[t0, t1]` (s) over which `range.csv` takes its minimum,

@@ -179,7 +179,8 @@ pub const MAX_PROBES: usize = 1000;
 /// Extra result files (`output`).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Output {
-    /// Material coordinates s (m, in [0, L]) of the probes, in the scene's order.
+    /// Material coordinates s (m, in [0, L]) of the probes, in the scene's order; without
+    /// `output.probes`, midspan for a strand supported at both ends, else none.
     pub probes: Vec<f64>,
     /// Time window `(t0, t1)` (s) of the range envelopes; `None` for the whole run.
     pub range_window: Option<(f64, f64)>,
@@ -430,7 +431,8 @@ impl Scene {
                  supports; run the fine model in a dynamic analysis",
             ));
         }
-        let output = output(file.output.as_ref(), strand.length(), &analysis)?;
+        let both_ends = supports.len() == 2;
+        let output = output(file.output.as_ref(), strand.length(), &analysis, both_ends)?;
         Ok(Scene {
             name: file.name.clone(),
             strand,
@@ -545,16 +547,21 @@ fn motion(path: &str, rows: &[[f64; 4]]) -> Result<Vec<[f64; 4]>, SceneError> {
     Ok(rows.to_vec())
 }
 
-/// The `output` section: probes in [0, L], a range window inside a dynamic run.
+/// The `output` section: probes in [0, L] (by default midspan for a strand supported at both
+/// ends, `both_ends`, else none), a range window inside a dynamic run.
 fn output(
     file: Option<&OutputFile>,
     length: f64,
     analysis: &Analysis,
+    both_ends: bool,
 ) -> Result<Output, SceneError> {
-    let Some(file) = file else {
-        return Ok(Output::default());
+    let default = OutputFile::default();
+    let file = file.unwrap_or(&default);
+    let probes = match &file.probes {
+        Some(p) => p.clone(),
+        None if both_ends => vec![0.5 * length],
+        None => Vec::new(),
     };
-    let probes = file.probes.clone().unwrap_or_default();
     if probes.len() > MAX_PROBES {
         return Err(SceneError::new(
             "output.probes",
