@@ -311,3 +311,71 @@ fn the_range_window_takes_only_its_frames() {
         "the frame at t = 0.08 s lies outside the window's envelope"
     );
 }
+
+/// Statics: each probe file holds one row, the equilibrium at t = 0 at rest, equal to
+/// `centerline.csv` interpolated at s (beams with a layer, the fine model on a core wire).
+#[test]
+fn static_probes_equal_the_centreline() {
+    let probes = [0.0, 0.1, 0.23, 0.4];
+    let mut checked = 0;
+    let layer = json!([ { "wires": 6, "diameter": 2.0e-3, "lay_angle_deg": 20.0,
+                          "youngs_modulus": 2.0e8, "poisson_ratio": 0.3, "density": 7801.0 } ]);
+    for (layers, models, tag) in [
+        (
+            layer,
+            json!({ "equivalent": { "elements": 6 }, "traditional": { "elements": 6 } }),
+            "static-beams",
+        ),
+        (
+            json!([]),
+            json!({ "fine": { "segments_per_wire": 20 } }),
+            "static-fine",
+        ),
+    ] {
+        let scene = json!({
+            "name": "probe-cantilever",
+            "strand": {
+                "length": 0.4,
+                "core": { "diameter": 3.0e-3, "youngs_modulus": 2.0e8, "poisson_ratio": 0.3, "density": 7801.0 },
+                "layers": layers
+            },
+            "supports": [ { "at": "start", "kind": "clamped" } ],
+            "loads": { "gravity": [0.0, -9.8065, 0.0] },
+            "analysis": { "kind": "static", "load_steps": 4 },
+            "models": models,
+            "output": { "probes": probes }
+        });
+        let out = run(&scene, tag);
+        for model in ["equivalent", "traditional", "fine"] {
+            let dir = out.join(model);
+            if !dir.exists() {
+                continue;
+            }
+            checked += 1;
+            let c = csv_columns(&dir.join("centerline.csv"));
+            let kappa = scale(&c["curvature"]);
+            for s in probes {
+                let p = csv_columns(&dir.join(format!("probe_{s}.csv")));
+                assert_eq!(p["t"], vec![0.0], "{model} {s}: one row at t = 0");
+                for v in ["vx", "vy", "vz"] {
+                    assert_eq!(p[v], vec![0.0]);
+                }
+                for q in ["curvature", "moment", "tension"] {
+                    let expect = interp(&c["s"], &c[q], s);
+                    let tol = 1e-12 * scale(&c[q]).max(1e-300);
+                    assert!((p[q][0] - expect).abs() <= tol, "{model} {s} {q}");
+                }
+                // Position: exact at s for the beams, within the chord error h^2/8 |r''|
+                // of the rows' interpolation (module docs of the dynamic check).
+                let j = (1..c["s"].len()).find(|&j| c["s"][j] >= s).unwrap();
+                let h = c["s"][j] - c["s"][j - 1];
+                for a in ["x", "y", "z"] {
+                    let expect = interp(&c["s"], &c[a], s);
+                    let tol = h * h / 8.0 * 2.0 * kappa + 1e-12;
+                    assert!((p[a][0] - expect).abs() <= tol, "{model} {s} {a}");
+                }
+            }
+        }
+    }
+    assert_eq!(checked, 3, "the three models were checked");
+}
