@@ -82,8 +82,14 @@ pub(crate) fn rows(beam: &Beam, q: &[f64], slip: &[f64], points: &[PointState]) 
         let st = law.station(r.s);
         let [ky, kz] = r.kappa;
         r.curvature = if planar { kz } else { ky.hypot(kz) };
-        r.stiffness = secant(law, &st, r.eps, r.kappa, sl);
         r.moment = moment(law, &st, r.eps, r.kappa, sl, planar);
+        // The secant from the moment just evaluated where it is the same quotient as
+        // `secant`'s (one law evaluation a row, not two); `secant` at zero curvature.
+        r.stiffness = match (planar, ky, kz) {
+            (true, _, kz) if kz != 0.0 => r.moment / kz,
+            (false, ky, kz) if ky != 0.0 => r.moment / ky.hypot(kz),
+            _ => secant(law, &st, r.eps, r.kappa, sl),
+        };
     }
     // A law with slip state has it at the bending points only: at the ends, whose curvature
     // and state differ from the nearest point's, the stiffness is that point's (a slipped
