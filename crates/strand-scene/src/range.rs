@@ -125,3 +125,71 @@ impl Envelopes {
         Ok(blanks)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn station(s: f64, v: f64) -> Station {
+        Station {
+            s,
+            position: [s, 0.0, 0.0],
+            curvature: v,
+            moment: -2.0 * v,
+            tension: v * v,
+            stiffness: (v > 0.0).then_some(v),
+        }
+    }
+
+    proptest! {
+        /// Over frames at random times, each point's envelope holds exactly the frames in the
+        /// window: its min and max are theirs, its mean theirs (to round-off) and within them.
+        #[test]
+        fn envelopes_are_the_window_frames_extremes_and_mean(
+            frames in prop::collection::vec(
+                (0.0f64..10.0, prop::collection::vec(-1e3f64..1e3, 3)), 1..40),
+            t0 in 0.0f64..10.0, span in 0.0f64..10.0,
+        ) {
+            let window = (t0, t0 + span);
+            let mut env = Envelopes::new(Some(window));
+            for (t, values) in &frames {
+                let st: Vec<Station> =
+                    values.iter().enumerate().map(|(i, v)| station(i as f64, *v)).collect();
+                env.add(*t, &st).unwrap();
+            }
+            let inside: Vec<&Vec<f64>> = frames
+                .iter()
+                .filter(|(t, _)| (window.0..=window.1).contains(t))
+                .map(|(_, v)| v)
+                .collect();
+            prop_assert_eq!(env.frames(), inside.len());
+            for (i, e) in env.extents.iter().enumerate() {
+                let col: Vec<f64> = inside.iter().map(|v| v[i]).collect();
+                let [lo, hi, mean] = e[0].values();
+                if col.is_empty() {
+                    prop_assert!(lo.is_nan() && hi.is_nan() && mean.is_nan());
+                    continue;
+                }
+                let min = col.iter().copied().fold(f64::INFINITY, f64::min);
+                let max = col.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                let avg = col.iter().sum::<f64>() / col.len() as f64;
+                prop_assert_eq!((lo, hi), (min, max));
+                prop_assert!(lo <= mean && mean <= hi);
+                // A sum of at most 40 values below 1e3: round-off well under 1e-9.
+                prop_assert!((mean - avg).abs() <= 1e-9);
+                // The stiffness only where defined (positive values here).
+                let defined = col.iter().filter(|v| **v > 0.0).count();
+                prop_assert_eq!(e[3].count, defined);
+            }
+        }
+    }
+
+    #[test]
+    fn a_frame_with_other_points_is_refused() {
+        let mut env = Envelopes::new(None);
+        env.add(0.0, &[station(0.0, 1.0), station(1.0, 2.0)])
+            .unwrap();
+        assert!(env.add(0.1, &[station(0.0, 1.0)]).is_err());
+    }
+}
