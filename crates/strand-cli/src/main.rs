@@ -71,12 +71,15 @@ enum Command {
         #[arg(long, default_value = "out")]
         out: PathBuf,
         /// Also write the centreline of every output frame as VTK files (`DIR/<model>/vtk/`),
-        /// a time series that ParaView opens.
+        /// a time series that ParaView opens, with curvature, tension and moment (and the
+        /// beams' bending stiffness) as point data.
         #[arg(long)]
         vtk: bool,
-        /// Also draw the results as PNG and SVG in `DIR/plots/`: shape, curvature and bending
-        /// stiffness along the strand (with K_min and K_max), each wire's stick/slip state
-        /// along it, for dynamics the tip's path and the energies, and an overview of all.
+        /// Also draw the results as PNG and SVG in `DIR/plots/`: shape (sag exaggerated by a
+        /// stated factor where small), curvature and bending stiffness along the strand (with
+        /// K_min and K_max), each wire's stick/slip state along it; for dynamics the motion
+        /// and moment-curvature loop at each probe (the tip's path without probes), the range
+        /// envelopes of moment, curvature and tension, and the energies; and an overview.
         #[arg(long)]
         plot: bool,
         /// Run only this model of the scene (`equivalent`, `traditional` or `fine`);

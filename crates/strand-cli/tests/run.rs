@@ -49,10 +49,20 @@ fn static_scene_writes_centerline_wires_and_summary() {
                 "z",
                 "curvature",
                 "tension",
-                "bending_stiffness"
+                "bending_stiffness",
+                "moment"
             ]
         );
         assert!(rows.len() > 100);
+        // The moment is the one the secant stiffness divides: M = (M / kappa) kappa, signed
+        // like the curvature (round-off of one division and one product).
+        for r in &rows {
+            let (kappa, k, m) = (r[4], r[6], r[7]);
+            assert!(
+                (m - k * kappa).abs() <= 1e-12 * m.abs().max(1e-300),
+                "{r:?}"
+            );
+        }
         assert!(rows.iter().flatten().all(|v| v.is_finite()));
         // The strand hangs: the last point is far below the clamp.
         assert!(rows.last().unwrap()[2] < -0.5);

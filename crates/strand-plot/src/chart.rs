@@ -12,6 +12,18 @@ use plotters::style::{FontStyle, register_font};
 /// Pixel size of a chart.
 const SIZE: (u32, u32) = (900, 560);
 
+/// What a chart's axes, labels and title take of its width and height (pixels): the plot
+/// area is the chart's size less this.
+pub const PLOT_MARGIN: (f64, f64) = (102.0, 92.0);
+
+/// The plot area of one chart (pixels), width by height.
+pub fn plot_area() -> (f64, f64) {
+    (
+        f64::from(SIZE.0) - PLOT_MARGIN.0,
+        f64::from(SIZE.1) - PLOT_MARGIN.1,
+    )
+}
+
 /// A chart that could not be drawn or written.
 #[derive(Debug, thiserror::Error)]
 #[error("{path}: {message}")]
@@ -42,6 +54,9 @@ pub enum Mark {
     Dots,
     /// Solid line with large hollow circles at the points (a Pareto front).
     Front,
+    /// Thin solid line, for paths that turn back on themselves (hysteresis loops, orbits):
+    /// the thick line's mitred joints would draw spikes past a reversal in the bitmap.
+    Trace,
 }
 
 /// One curve or point set of a chart.
@@ -101,6 +116,9 @@ pub struct Chart {
     pub log_y: bool,
     /// Same scale on both axes (shapes).
     pub equal_aspect: bool,
+    /// With `equal_aspect`: a unit of y drawn this many times longer than a unit of x (a
+    /// vertical exaggeration, which the y label should state); `None` for 1.
+    pub vertical_exaggeration: Option<f64>,
     /// A line of text inside the plot area, e.g. what is not available.
     pub note: Option<String>,
     /// The y axis's range instead of the data's (linear axes).
@@ -227,7 +245,8 @@ fn equalize(x: (f64, f64), y: (f64, f64), width: f64, height: f64) -> ((f64, f64
 }
 
 /// Tick labels for an axis spanning `range`: zero for values within 1e-9 of the span of
-/// zero, plain decimals between 1e-2 and 1e4, else scientific notation.
+/// zero, plain decimals between 1e-2 and 1e4, else scientific notation with the digits that
+/// tell ticks a twentieth of the span apart (1.5e-3 beside 1e-3, not both `2e-3`).
 fn tick_label(range: (f64, f64)) -> impl Fn(&f64) -> String {
     let span = (range.1 - range.0).abs();
     move |v: &f64| {
@@ -237,7 +256,15 @@ fn tick_label(range: (f64, f64)) -> impl Fn(&f64) -> String {
         } else if (1e-2..1e4).contains(&a) {
             format!("{}", (v * 1e4).round() / 1e4)
         } else {
-            format!("{v:.0e}")
+            let digits = (a / (span / 20.0)).log10().ceil().clamp(0.0, 6.0) as usize;
+            let text = format!("{v:.digits$e}");
+            // 1.0e-3 as 1e-3: trailing zeros of the mantissa dropped.
+            match text.split_once('e') {
+                Some((m, e)) if m.contains('.') => {
+                    format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.'))
+                }
+                _ => text,
+            }
         }
     }
 }
@@ -252,6 +279,9 @@ macro_rules! draw_series {
             let anno = match s.mark {
                 Mark::Line => $ctx
                     .draw_series(LineSeries::new(pts, c.stroke_width(2)))
+                    .map_err(err)?,
+                Mark::Trace => $ctx
+                    .draw_series(LineSeries::new(pts, c.stroke_width(1)))
                     .map_err(err)?,
                 Mark::Dashed => $ctx
                     .draw_series(DashedLineSeries::new(pts, 8, 5, c.stroke_width(2)))
@@ -356,7 +386,10 @@ where
     } else {
         let (xr, yr) = if chart.equal_aspect {
             let (w, h) = root.dim_in_pixel();
-            equalize(xr, yr, f64::from(w) - 102.0, f64::from(h) - 92.0)
+            let e = chart.vertical_exaggeration.unwrap_or(1.0);
+            let (w, h) = (f64::from(w) - PLOT_MARGIN.0, f64::from(h) - PLOT_MARGIN.1);
+            let (xr, (y0, y1)) = equalize(xr, (yr.0 * e, yr.1 * e), w, h);
+            (xr, (y0 / e, y1 / e))
         } else {
             (xr, yr)
         };
@@ -436,6 +469,17 @@ mod tests {
         let (lo, hi) = range([-1.0, 1e-3, 1e2].into_iter(), true);
         assert!(lo > 0.0 && lo < 1e-3 && hi > 1e2);
         assert_eq!(range(std::iter::empty(), false), (0.0, 1.0));
+    }
+
+    /// Ticks a twentieth of the span apart read differently: 1.5e-3 is not rounded to 2e-3.
+    #[test]
+    fn small_tick_labels_keep_the_digits_that_tell_them_apart() {
+        let f = tick_label((-3e-3, 7e-3));
+        assert_eq!(f(&1.5e-3), "1.5e-3");
+        assert_eq!(f(&1e-3), "1e-3");
+        assert_eq!(f(&-2.5e-3), "-2.5e-3");
+        assert_eq!(f(&1e-12), "0");
+        assert_eq!(tick_label((0.0, 5e5))(&2e5), "2e5");
     }
 
     #[test]

@@ -1,14 +1,17 @@
 //! The charts of a run (`strand run --plot`), drawn from its result files so that they show
-//! exactly what the files hold (a model that failed draws what it wrote): the shape, the
-//! curvature and the bending stiffness along s (with K_min and K_max), each wire's stick/slip
-//! state along s, and for dynamics the tip's path and the energies; one chart to a file, and an
-//! overview with all of them.
+//! exactly what the files hold (a model that failed draws what it wrote): the shape (with a
+//! stated vertical exaggeration where the sag or swing is small beside the length), the
+//! curvature and the bending stiffness along s (with K_min and K_max, clipped to a stated
+//! band), each wire's stick/slip state along s, and for dynamics the motion at each probe
+//! (the tip's path without probes), the moment-curvature loop at each probe, the range
+//! envelopes of moment, curvature and tension along s, and the energies; one chart to a file,
+//! and an overview with all of them.
 
 use std::path::{Path, PathBuf};
 
 use strand_scene::{Analysis, RunSummary, Scene};
 
-use crate::chart::{Chart, Mark, PlotError, Series, save, save_grid};
+use crate::chart::{Chart, Mark, PlotError, Series, plot_area, save, save_grid};
 use crate::table::{Table, TextTable};
 
 /// Palette index of each model's curves.
@@ -45,7 +48,7 @@ pub fn plot_run(
     let name = &scene.name;
     let mut charts: Vec<(String, Chart)> = Vec::new();
 
-    let shape = spread_view(format!("{name}: shape at the end"), &lines);
+    let shape = spread_view(format!("{name}: shape at the end"), &lines, Mark::Line);
     charts.push(("shape".into(), shape));
 
     let along = |column: &str, keep: &dyn Fn(&RunSummary, &Table, usize) -> bool| {
@@ -91,6 +94,7 @@ pub fn plot_run(
         k[i].abs() > 1e-2 * top
     };
     let mut series = along("bending_stiffness", &bent);
+    let band = stiffness_band(&series, k_max);
     let ends = (0.0, strand.length());
     if strand.layer().is_some() {
         for (k, what, color) in [(k_min, "K_min", 6), (k_max, "K_max", 3)] {
@@ -107,10 +111,21 @@ pub fn plot_run(
         x_label: "s (m)".into(),
         y_label: "bending stiffness (N m^2)".into(),
         series,
-        note: lines
-            .iter()
-            .any(|(s, _)| s.model == "fine")
-            .then(|| "fine model: where |kappa| > 1 % of its largest".to_string()),
+        note: {
+            let mut notes = Vec::new();
+            if let Some((_, top)) = band {
+                notes.push(format!(
+                    "secant M/kappa clipped to 0..{} N m^2 (residual slip moments at small \
+                     kappa send it far out)",
+                    short(top)
+                ));
+            }
+            if lines.iter().any(|(s, _)| s.model == "fine") {
+                notes.push("fine model: where |kappa| > 1 % of its largest".to_string());
+            }
+            (!notes.is_empty()).then(|| notes.join("; "))
+        },
+        y_range: band,
         ..Chart::default()
     };
     charts.push(("stiffness".into(), stiffness));
@@ -160,14 +175,85 @@ pub fn plot_run(
     }
 
     if matches!(scene.analysis, Analysis::Dynamic(_)) {
-        let tips: Vec<(&RunSummary, Table)> = summaries
+        if scene.output.probes.is_empty() {
+            let tips: Vec<(&RunSummary, Table)> = summaries
+                .iter()
+                .filter_map(|s| read(s, "tip.csv").map(|t| (s, t)))
+                .collect();
+            charts.push((
+                "tip".into(),
+                spread_view(format!("{name}: path of the tip"), &tips, Mark::Trace),
+            ));
+        }
+        for &at in &scene.output.probes {
+            let file = strand_scene::probe::file_name(at);
+            let runs: Vec<(&RunSummary, Table)> = summaries
+                .iter()
+                .filter_map(|s| read(s, &file).map(|t| (s, t)))
+                .collect();
+            if runs.is_empty() {
+                continue;
+            }
+            let stem = file.trim_end_matches(".csv").replace('_', "-");
+            charts.push((
+                format!("{stem}-motion"),
+                probe_motion(format!("{name}: motion at s = {} m", short(at)), &runs),
+            ));
+            charts.push((
+                format!("{stem}-loop"),
+                Chart {
+                    title: format!("{name}: moment-curvature at s = {} m", short(at)),
+                    x_label: "curvature (1/m)".into(),
+                    y_label: "bending moment (N m)".into(),
+                    series: runs
+                        .iter()
+                        .map(|(s, t)| {
+                            let (k, m) = (t.column("curvature"), t.column("moment"));
+                            Series::xy(
+                                format!(
+                                    "{}: work of M dkappa {} J/m",
+                                    label(s),
+                                    short(loop_work(&k, &m))
+                                ),
+                                &k,
+                                &m,
+                                Mark::Trace,
+                                model_color(&s.model),
+                            )
+                        })
+                        .collect(),
+                    ..Chart::default()
+                },
+            ));
+        }
+        let ranges: Vec<(&RunSummary, Table)> = summaries
             .iter()
-            .filter_map(|s| read(s, "tip.csv").map(|t| (s, t)))
+            .filter_map(|s| read(s, "range.csv").map(|t| (s, t)))
             .collect();
-        charts.push((
-            "tip".into(),
-            spread_view(format!("{name}: path of the tip"), &tips),
-        ));
+        let window = scene
+            .output
+            .range_window
+            .map_or("over the run".to_string(), |(a, b)| {
+                format!("over t in [{}, {}] s", short(a), short(b))
+            });
+        for (q, what, unit) in [
+            ("moment", "bending moment", "N m"),
+            ("curvature", "curvature", "1/m"),
+            ("tension", "tension", "N"),
+        ] {
+            if ranges.is_empty() {
+                break;
+            }
+            charts.push((
+                format!("range-{q}"),
+                envelope(
+                    format!("{name}: {what} range along the strand, {window}"),
+                    &ranges,
+                    q,
+                    &format!("{what} ({unit})"),
+                ),
+            ));
+        }
         for s in summaries {
             let Some(e) = read(s, "energy.csv") else {
                 continue;
@@ -205,6 +291,141 @@ pub fn plot_run(
     Ok(files)
 }
 
+/// The band the bending stiffness chart is clipped to, `(0, top)` with `top` 1.5 times the
+/// larger of K_max and each series' median (the traditional beam's constant EI may exceed
+/// K_max); `None` when every point lies in the band already.
+fn stiffness_band(series: &[Series], k_max: f64) -> Option<(f64, f64)> {
+    let mut top = k_max;
+    for s in series {
+        let mut v: Vec<f64> = s
+            .points
+            .iter()
+            .map(|p| p.1)
+            .filter(|v| v.is_finite())
+            .collect();
+        if v.is_empty() {
+            continue;
+        }
+        v.sort_by(f64::total_cmp);
+        top = top.max(v[v.len() / 2]);
+    }
+    let top = 1.5 * top;
+    let inside = series
+        .iter()
+        .flat_map(|s| &s.points)
+        .all(|p| !p.1.is_finite() || (0.0..=top).contains(&p.1));
+    (top > 0.0 && !inside).then_some((0.0, top))
+}
+
+/// The work of the moment along the path `(kappa, M)` (J/m): the trapezoidal sum of
+/// M dkappa, the area of a closed loop (what the section dissipated over it, the slip work).
+fn loop_work(kappa: &[f64], moment: &[f64]) -> f64 {
+    kappa
+        .windows(2)
+        .zip(moment.windows(2))
+        .map(|(k, m)| 0.5 * (m[0] + m[1]) * (k[1] - k[0]))
+        .filter(|w| w.is_finite())
+        .sum()
+}
+
+/// The motion at a probe over time: each model's coordinate that moves most (of x, y, z over
+/// all the runs), as its displacement from where it starts.
+fn probe_motion(title: String, runs: &[(&RunSummary, Table)]) -> Chart {
+    let spread = |c: &str| {
+        runs.iter()
+            .flat_map(|(_, t)| {
+                let v = t.column(c);
+                let first = v.first().copied().unwrap_or(0.0);
+                v.into_iter().map(move |x| (x - first).abs())
+            })
+            .filter(|v| v.is_finite())
+            .fold(0.0f64, f64::max)
+    };
+    let axis = ["x", "y", "z"]
+        .into_iter()
+        .max_by(|a, b| spread(a).total_cmp(&spread(b)))
+        .unwrap_or("y");
+    Chart {
+        title,
+        x_label: "t (s)".into(),
+        y_label: format!("displacement along {axis} (m)"),
+        series: runs
+            .iter()
+            .map(|(s, t)| {
+                let v = t.column(axis);
+                let first = v.first().copied().unwrap_or(0.0);
+                let d: Vec<f64> = v.iter().map(|x| x - first).collect();
+                Series::xy(
+                    label(s),
+                    &t.column("t"),
+                    &d,
+                    Mark::Line,
+                    model_color(&s.model),
+                )
+            })
+            .collect(),
+        ..Chart::default()
+    }
+}
+
+/// The range envelope of quantity `q` along s from `range.csv`: each model's min and max
+/// (solid) and mean (dashed).
+fn envelope(title: String, runs: &[(&RunSummary, Table)], q: &str, y_label: &str) -> Chart {
+    let mut series = Vec::new();
+    for (s, t) in runs {
+        let x = t.column("s");
+        let c = model_color(&s.model);
+        let name = label(s);
+        series.push(Series::xy(
+            format!("{name} min, max"),
+            &x,
+            &t.column(&format!("{q}_max")),
+            Mark::Line,
+            c,
+        ));
+        series.push(Series::xy(
+            "",
+            &x,
+            &t.column(&format!("{q}_min")),
+            Mark::Line,
+            c,
+        ));
+        series.push(Series::xy(
+            format!("{name} mean"),
+            &x,
+            &t.column(&format!("{q}_mean")),
+            Mark::Dashed,
+            c,
+        ));
+    }
+    Chart {
+        title,
+        x_label: "s (m)".into(),
+        y_label: y_label.into(),
+        series,
+        ..Chart::default()
+    }
+}
+
+/// The vertical exaggeration that makes a shape spreading `dx` across and `dy` up fill about
+/// half the plot's height: 1 where at equal scale it fills a quarter or more, else the
+/// largest of 1, 2, 5 times a power of ten not above the factor that fills half.
+fn exaggeration(dx: f64, dy: f64) -> f64 {
+    let (w, h) = plot_area();
+    let fill = if dx > 0.0 { (dy / dx) * (w / h) } else { 1.0 };
+    if fill.is_nan() || fill <= 0.0 || fill >= 0.25 {
+        return 1.0;
+    }
+    let target = 0.5 / fill;
+    let decade = 10f64.powf(target.log10().floor());
+    [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * decade)
+        .find(|&f| f <= target)
+        .unwrap_or(decade)
+        .max(1.0)
+}
+
 /// `v` with 4 significant digits: plain between 1e-3 and 1e4, with an exponent outside.
 fn short(v: f64) -> String {
     let a = v.abs();
@@ -217,14 +438,32 @@ fn short(v: f64) -> String {
 }
 
 /// Each run's points (columns x, y, z, m) drawn in the plane of the two axes along which they
-/// spread most, at equal scale.
-fn spread_view(title: String, runs: &[(&RunSummary, Table)]) -> Chart {
+/// spread most, at equal scale, or with the vertical scale exaggerated by a factor the y label
+/// states where the vertical spread is small beside the horizontal one (a sag on a span).
+fn spread_view(title: String, runs: &[(&RunSummary, Table)], mark: Mark) -> Chart {
     let axes = spread_axes(runs.iter().map(|(_, t)| t));
     let axis_name = ["x", "y", "z"];
+    let extent = |a: usize| {
+        let v: Vec<f64> = runs
+            .iter()
+            .flat_map(|(_, t)| t.column(axis_name[a]))
+            .filter(|v| v.is_finite())
+            .collect();
+        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        (hi - lo).max(0.0)
+    };
+    let e = exaggeration(extent(axes.0), extent(axes.1));
+    let y_label = if e > 1.0 {
+        format!("{} (m, scale x {})", axis_name[axes.1], e)
+    } else {
+        format!("{} (m)", axis_name[axes.1])
+    };
     Chart {
         title,
         x_label: format!("{} (m)", axis_name[axes.0]),
-        y_label: format!("{} (m)", axis_name[axes.1]),
+        y_label,
+        vertical_exaggeration: (e > 1.0).then_some(e),
         series: runs
             .iter()
             .map(|(s, t)| {
@@ -232,7 +471,7 @@ fn spread_view(title: String, runs: &[(&RunSummary, Table)]) -> Chart {
                     label(s),
                     &t.column(axis_name[axes.0]),
                     &t.column(axis_name[axes.1]),
-                    Mark::Line,
+                    mark,
                     model_color(&s.model),
                 )
             })
@@ -292,5 +531,25 @@ mod tests {
         assert_eq!(short(0.05334), "0.05334");
         assert_eq!(short(1.94), "1.940");
         assert_eq!(short(2.5e-5), "2.500e-5");
+    }
+
+    /// A flat shape is exaggerated by a round factor that makes it fill between a quarter
+    /// and about half of the height; one that fills a quarter at equal scale is not.
+    #[test]
+    fn exaggeration_fills_the_height_with_a_round_factor() {
+        let (w, h) = plot_area();
+        for (dx, dy) in [(50.0, 0.43), (50.0, 0.05), (2.0, 0.01), (1.0, 1e-6)] {
+            let e = exaggeration(dx, dy);
+            let fill = dy * e / dx * w / h;
+            assert!(
+                (0.2..=0.5 + 1e-12).contains(&fill),
+                "{dx} {dy}: x {e} fills {fill}"
+            );
+            let m = e / 10f64.powf(e.log10().floor());
+            assert!([1.0, 2.0, 5.0].iter().any(|r| (m - r).abs() < 1e-9), "{e}");
+        }
+        assert_eq!(exaggeration(2.0, 1.0), 1.0);
+        assert_eq!(exaggeration(2.0, 0.0), 1.0);
+        assert_eq!(exaggeration(0.0, 1.0), 1.0);
     }
 }

@@ -4,6 +4,14 @@
 use strand_scene::{RunOptions, Scene, run_scene};
 
 fn scene(analysis: &str) -> Scene {
+    scene_with(
+        analysis,
+        r#"[ { "at": "start", "kind": "clamped" } ]"#,
+        "{}",
+    )
+}
+
+fn scene_with(analysis: &str, supports: &str, output: &str) -> Scene {
     let text = format!(
         r#"{{
         "name": "plot-test",
@@ -12,7 +20,8 @@ fn scene(analysis: &str) -> Scene {
             "layers": [ {{ "wires": 6, "diameter": 2e-3, "lay_angle_deg": 20,
                            "youngs_modulus": 2e8, "poisson_ratio": 0.3, "density": 7801 }} ] }},
         "law": "hysteretic",
-        "supports": [ {{ "at": "start", "kind": "clamped" }} ],
+        "supports": {supports},
+        "output": {output},
         "loads": {{ "gravity": [0, -8, 0] }},
         "analysis": {analysis},
         "models": {{ "equivalent": {{ "elements": 4 }}, "traditional": {{ "elements": 4 }} }}
@@ -63,4 +72,49 @@ fn a_run_is_drawn_from_its_files() {
         assert!(stiffness.contains("K_min") && stiffness.contains("K_max"));
         let _ = std::fs::remove_dir_all(out);
     }
+}
+
+/// A span pinned at both ends: its sag is drawn exaggerated, with the factor on the axis; in
+/// dynamics the midspan probe (the default) takes the tip's place, with its moment-curvature
+/// loop, and the range envelopes are drawn.
+#[test]
+fn a_span_shows_its_sag_midspan_and_ranges() {
+    let supports = r#"[ { "at": "start", "kind": "pinned" }, { "at": "end", "kind": "pinned" } ]"#;
+    let out = std::env::temp_dir().join(format!("strand-plot-span-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let scene = scene_with(
+        r#"{ "kind": "dynamic", "duration": 0.02, "integrator": "generalized-alpha",
+             "time_step": 1e-3, "output_interval": 2e-3 }"#,
+        supports,
+        "{}",
+    );
+    assert_eq!(scene.output.probes, vec![0.2], "midspan by default");
+    let opts = RunOptions {
+        out: out.clone(),
+        vtk: false,
+    };
+    let s = run_scene(&scene, &opts, &mut |_, _| {}).unwrap();
+    let files = strand_plot::plot_run(&scene, &out, &s).unwrap();
+    let plots = out.join("plots");
+    for stem in [
+        "probe-0.2-motion",
+        "probe-0.2-loop",
+        "range-moment",
+        "range-curvature",
+        "range-tension",
+    ] {
+        assert!(files.contains(&plots.join(format!("{stem}.png"))), "{stem}");
+    }
+    assert!(
+        !plots.join("tip.png").exists(),
+        "the probe replaces the tip"
+    );
+    let shape = std::fs::read_to_string(plots.join("shape.svg")).unwrap();
+    assert!(
+        shape.contains("scale x"),
+        "the sag is exaggerated and says so"
+    );
+    let loop_svg = std::fs::read_to_string(plots.join("probe-0.2-loop.svg")).unwrap();
+    assert!(loop_svg.contains("work of M dkappa"));
+    let _ = std::fs::remove_dir_all(out);
 }

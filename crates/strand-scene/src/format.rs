@@ -33,6 +33,24 @@ pub struct SceneFile {
     pub analysis: AnalysisFile,
     /// Which models to run, with their discretisation.
     pub models: ModelsFile,
+    /// Extra result files: probes and range envelopes.
+    #[serde(default)]
+    pub output: Option<OutputFile>,
+}
+
+/// `output`: extra result files of a run (the standard ones are always written).
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq, Default)]
+#[serde(deny_unknown_fields)]
+pub struct OutputFile {
+    /// Probes: material coordinates s (m, in [0, L]) at which every model writes
+    /// `probe_<s>.csv`, the time history of the strand there. Default: midspan for a strand
+    /// supported at both ends, else none (`[]` for none).
+    #[serde(default)]
+    pub probes: Option<Vec<f64>>,
+    /// Dynamic: the time window `[t0, t1]` (s) over which `range.csv` takes its minimum,
+    /// maximum and mean (default the whole run).
+    #[serde(default)]
+    pub range_window: Option<[f64; 2]>,
 }
 
 /// `strand`: length, core, layers, friction (SPEC 1).

@@ -3,9 +3,12 @@
 //! that builds and runs the models and writes the result files ([`output`]); shared by the
 //! `strand` command and the validation harness.
 
+pub mod along;
 mod bending;
 pub mod format;
 pub mod output;
+pub mod probe;
+pub mod range;
 mod run;
 mod scene;
 pub mod section_batch;
@@ -18,7 +21,7 @@ pub use run::{
 };
 pub use scene::{
     Analysis, BeamModel, DEFAULT_MAX_STEPS, Dynamic, End, FineModel, IntegratorKind,
-    MAX_MOTION_ROWS, MAX_POINT_FORCES, MEMORY_LIMIT, Models, Scene, SceneError, Support,
-    SupportKind, beam_memory, fine_memory,
+    MAX_MOTION_ROWS, MAX_POINT_FORCES, MAX_PROBES, MEMORY_LIMIT, Models, Output, Scene, SceneError,
+    Support, SupportKind, beam_memory, fine_memory,
 };
 pub use selection::{MODEL_NAMES, ModelSelectionError};

@@ -116,7 +116,8 @@ pub fn write_vtk_polyline(
 }
 
 /// The columns of `centerline.csv` (SPEC 6), in order; a model may add its own after them.
-pub const CENTERLINE_COLUMNS: [&str; 7] = [
+/// `moment` (N m) came last, after the SPEC 6 columns, so that readers of those keep working.
+pub const CENTERLINE_COLUMNS: [&str; 8] = [
     "s",
     "x",
     "y",
@@ -124,7 +125,17 @@ pub const CENTERLINE_COLUMNS: [&str; 7] = [
     "curvature",
     "tension",
     "bending_stiffness",
+    "moment",
 ];
+
+/// One VTK frame: a polyline through `points` (m) with per-point scalars.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct VtkFrame {
+    /// The polyline's points (m).
+    pub points: Vec<[f64; 3]>,
+    /// Named point data, one value per point.
+    pub scalars: Vec<(&'static str, Vec<f64>)>,
+}
 
 /// Writes the one frame of a static run, `vtk/centerline_00000.vtk` in `dir`: a polyline
 /// through `points` (m) with per-point scalars (see [`write_vtk_polyline`]). An error names
@@ -182,14 +193,14 @@ impl FrameFiles {
 
     /// Writes the frame at time `t` (s): tip position `x` (m) and velocity `v` (m/s), the
     /// energies in the header's order after `t` (J), and, with VTK output, the centreline
-    /// `centreline()` yields (m).
+    /// with its point data that `centreline()` yields.
     pub fn write(
         &mut self,
         t: f64,
         x: [f64; 3],
         v: [f64; 3],
         energies: &[f64],
-        centreline: impl FnOnce() -> Vec<[f64; 3]>,
+        centreline: impl FnOnce() -> VtkFrame,
     ) -> io::Result<()> {
         self.tip.0.row(&[t, x[0], x[1], x[2], v[0], v[1], v[2]])?;
         let mut row = Vec::with_capacity(1 + energies.len());
@@ -198,7 +209,8 @@ impl FrameFiles {
         self.energy.0.row(&row)?;
         if let Some(d) = &self.vtk {
             let path = d.join(format!("centerline_{:05}.vtk", self.frame));
-            write_vtk_polyline(&path, &format!("t = {t} s"), &centreline(), &[])?;
+            let f = centreline();
+            write_vtk_polyline(&path, &format!("t = {t} s"), &f.points, &f.scalars)?;
         }
         self.frame += 1;
         Ok(())

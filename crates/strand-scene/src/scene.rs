@@ -18,7 +18,8 @@ use nalgebra::Vector3;
 use strand_ancf::spatial::default_phase_reference;
 
 use crate::format::{
-    AnalysisFile, BeamModelFile, FineModelFile, LayerFile, SceneFile, SectionFile, WireFile,
+    AnalysisFile, BeamModelFile, FineModelFile, LayerFile, OutputFile, SceneFile, SectionFile,
+    WireFile,
 };
 
 /// A rejected scene: the JSON path of the fault and what is wrong.
@@ -171,6 +172,20 @@ pub struct Models {
     pub fine: Option<FineModel>,
 }
 
+/// Most probes (`output.probes`) a scene may name: each is a file written at every output
+/// frame of every model.
+pub const MAX_PROBES: usize = 1000;
+
+/// Extra result files (`output`).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Output {
+    /// Material coordinates s (m, in [0, L]) of the probes, in the scene's order; without
+    /// `output.probes`, midspan for a strand supported at both ends, else none.
+    pub probes: Vec<f64>,
+    /// Time window `(t0, t1)` (s) of the range envelopes; `None` for the whole run.
+    pub range_window: Option<(f64, f64)>,
+}
+
 /// A validated scene.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
@@ -204,6 +219,8 @@ pub struct Scene {
     pub max_steps: usize,
     /// Models to run.
     pub models: Models,
+    /// Extra result files.
+    pub output: Output,
     /// The file as parsed (for provenance in result files).
     pub file: SceneFile,
 }
@@ -414,6 +431,8 @@ impl Scene {
                  supports; run the fine model in a dynamic analysis",
             ));
         }
+        let both_ends = supports.len() == 2;
+        let output = output(file.output.as_ref(), strand.length(), &analysis, both_ends)?;
         Ok(Scene {
             name: file.name.clone(),
             strand,
@@ -429,6 +448,7 @@ impl Scene {
             analysis,
             max_steps,
             models,
+            output,
             file,
         })
     }
@@ -525,6 +545,73 @@ fn motion(path: &str, rows: &[[f64; 4]]) -> Result<Vec<[f64; 4]>, SceneError> {
         prev = [row[1], row[2], row[3]];
     }
     Ok(rows.to_vec())
+}
+
+/// The `output` section: probes in [0, L] (by default midspan for a strand supported at both
+/// ends, `both_ends`, else none), a range window inside a dynamic run.
+fn output(
+    file: Option<&OutputFile>,
+    length: f64,
+    analysis: &Analysis,
+    both_ends: bool,
+) -> Result<Output, SceneError> {
+    let default = OutputFile::default();
+    let file = file.unwrap_or(&default);
+    let probes = match &file.probes {
+        Some(p) => p.clone(),
+        None if both_ends => vec![0.5 * length],
+        None => Vec::new(),
+    };
+    if probes.len() > MAX_PROBES {
+        return Err(SceneError::new(
+            "output.probes",
+            format!(
+                "{} probes, more than the {MAX_PROBES} a scene may name (each is a file)",
+                probes.len()
+            ),
+        ));
+    }
+    for (k, &s) in probes.iter().enumerate() {
+        let path = format!("output.probes[{k}]");
+        finite(&path, s)?;
+        if !(0.0..=length).contains(&s) {
+            return Err(SceneError::new(
+                path,
+                format!("must be in [0, {length}] (metres from the start), got {s}"),
+            ));
+        }
+        if probes[..k].contains(&s) {
+            return Err(SceneError::new(path, format!("s = {s} is named twice")));
+        }
+    }
+    let range_window = match file.range_window {
+        None => None,
+        Some([t0, t1]) => {
+            let path = "output.range_window";
+            finite_vec(path, &[t0, t1])?;
+            let Analysis::Dynamic(dy) = analysis else {
+                return Err(SceneError::new(
+                    path,
+                    "only for a dynamic analysis (range.csv is written by dynamic runs)",
+                ));
+            };
+            if !(0.0 <= t0 && t0 <= t1 && t0 <= dy.duration) {
+                return Err(SceneError::new(
+                    path,
+                    format!(
+                        "must be [t0, t1] with 0 <= t0 <= t1 and t0 <= analysis.duration = {} \
+                         s, got [{t0}, {t1}]",
+                        dy.duration
+                    ),
+                ));
+            }
+            Some((t0, t1))
+        }
+    };
+    Ok(Output {
+        probes,
+        range_window,
+    })
 }
 
 fn finite(path: &str, v: f64) -> Result<f64, SceneError> {

@@ -473,3 +473,54 @@ fn motion_tables_and_point_forces_are_bounded() {
         .collect();
     Scene::parse(&with(dynamic(), "/supports/0/motion", json!(table)).to_string()).unwrap();
 }
+
+/// The good scene with `output` set to `v`, parsed.
+fn with_output(v: Value, dynamic: bool) -> Result<Scene, strand_scene::SceneError> {
+    let mut s = good();
+    s["output"] = v;
+    if dynamic {
+        s["analysis"] = json!({ "kind": "dynamic", "duration": 1.0,
+                                "integrator": "generalized-alpha", "time_step": 1e-3,
+                                "output_interval": 0.01 });
+    }
+    Scene::parse(&s.to_string())
+}
+
+#[test]
+fn probes_outside_the_strand_or_twice_and_range_windows_out_of_place() {
+    let l = good()["strand"]["length"].as_f64().unwrap();
+    for (v, path) in [
+        (json!({ "probes": [0.0, -0.1] }), "output.probes[1]"),
+        (json!({ "probes": [l * 1.000001] }), "output.probes[0]"),
+        (json!({ "probes": [0.1, 0.2, 0.1] }), "output.probes[2]"),
+        (json!({ "probs": [0.1] }), "output.probs"),
+    ] {
+        let e = with_output(v, false).unwrap_err();
+        assert!(e.path.starts_with(path), "wrong path in `{e}` for {path}");
+    }
+    let e = with_output(json!({ "range_window": [0.0, 1.0] }), false).unwrap_err();
+    assert_path(&e, "output.range_window");
+    assert!(e.message.contains("dynamic"), "{e}");
+    for w in [[0.5, 0.2], [-0.1, 0.5], [2.0, 3.0]] {
+        let e = with_output(json!({ "range_window": w }), true).unwrap_err();
+        assert_path(&e, "output.range_window");
+    }
+    let ok = with_output(
+        json!({ "probes": [0.0, l], "range_window": [0.2, 5.0] }),
+        true,
+    );
+    let o = ok.unwrap().output;
+    assert_eq!(o.probes, vec![0.0, l]);
+    assert_eq!(o.range_window, Some((0.2, 5.0)));
+}
+
+proptest::proptest! {
+    /// A probe is accepted exactly when it lies in [0, L].
+    #[test]
+    fn a_probe_is_accepted_inside_the_strand_only(u in -1.0f64..2.0) {
+        let l = good()["strand"]["length"].as_f64().unwrap();
+        let s = u * l;
+        let r = with_output(json!({ "probes": [s] }), false);
+        proptest::prop_assert_eq!(r.is_ok(), (0.0..=l).contains(&s), "{:?}", r.err());
+    }
+}

@@ -14,8 +14,11 @@ use strand_ancf::initial::InitialState;
 use strand_ancf::statics::{StaticError, StaticOptions, solve_static};
 use strand_core::{LawKind, SectionLaw};
 
+use crate::along;
 use crate::output::FrameFiles;
-use crate::scene::{Analysis, BeamModel, End, IntegratorKind, Scene, SupportKind};
+use crate::probe::{ProbeFiles, ProbeSample};
+use crate::range::Envelopes;
+use crate::scene::{Analysis, BeamModel, End, IntegratorKind, Output, Scene, SupportKind};
 
 use super::beam_state;
 use super::budget;
@@ -214,7 +217,12 @@ pub(crate) fn run_beam(
     }
     let result = match scene.analysis {
         Analysis::Static { load_steps } => {
-            run_static(&beam, load_steps, &dir, opts.vtk, &mut summary, &mut |f| {
+            let files = Files {
+                dir: &dir,
+                vtk: opts.vtk,
+                output: &scene.output,
+            };
+            run_static(&beam, load_steps, &files, &mut summary, &mut |f| {
                 progress(name, f)
             })
         }
@@ -239,7 +247,12 @@ pub(crate) fn run_beam(
                         init.discarded
                     ));
                 }
-                run_dynamics(&beam, &o, &init, &dir, opts.vtk, &mut summary, &mut |f| {
+                let files = Files {
+                    dir: &dir,
+                    vtk: opts.vtk,
+                    output: &scene.output,
+                };
+                run_dynamics(&beam, &o, &init, &files, &mut summary, &mut |f| {
                     progress(name, f)
                 })
             })
@@ -340,13 +353,48 @@ fn failure_of_dynamic(e: &DynamicError) -> Failure {
     }
 }
 
-/// Writes `centerline.csv` and `wires.csv` (and with `vtk` the static frame) for the state
-/// `(q, slip, points)`; records the tip and any non-finite values left empty.
+/// Where a beam's run writes and what it writes beyond the standard files.
+struct Files<'a> {
+    dir: &'a Path,
+    vtk: bool,
+    output: &'a Output,
+}
+
+/// The strand at probe `s` (m) in the state `(q, slip)` with velocities `v` (m/s, `None`: at
+/// rest) whose rows along s are `rows`: position and velocity from the elements' shape
+/// functions at s; curvature, moment and tension interpolated linearly between the rows
+/// around s; the wire states of the row nearest s.
+fn probe_sample(
+    beam: &Beam,
+    (q, v, slip): (&[f64], Option<&[f64]>, &[f64]),
+    rows: &[beam_state::Row],
+    stations: &[along::Station],
+    s: f64,
+) -> ProbeSample {
+    let p = along::interpolate(stations, s);
+    let (i, w) = along::bracket(&stations.iter().map(|p| p.s).collect::<Vec<_>>(), s);
+    let near = if w > 0.5 { i + 1 } else { i }.min(rows.len() - 1);
+    let (sticking, slipping) = beam_state::wire_counts(beam, &rows[near], slip);
+    ProbeSample {
+        position: beam.sample(q, s).0,
+        velocity: v.map_or([0.0; 3], |v| beam.sample(v, s).0),
+        curvature: p.curvature,
+        moment: p.moment,
+        tension: p.tension,
+        sticking,
+        slipping,
+    }
+}
+
+/// Writes `centerline.csv` and `wires.csv` (and with `vtk` the static frame, with `probes`
+/// the one row of each probe file) for the state `(q, slip, points)`; records the tip and any
+/// non-finite values left empty.
 fn write_state(
     beam: &Beam,
     state: (&[f64], &[f64], &[PointState]),
     dir: &Path,
     vtk: Option<&str>,
+    probes: Option<&[f64]>,
     summary: &mut RunSummary,
 ) -> Result<(), Stop> {
     let (q, slip, points) = state;
@@ -361,14 +409,29 @@ fn write_state(
     if let Some(title) = vtk {
         beam_state::write_vtk(&rows, dir, title).map_err(Stop::output)?;
     }
+    if let Some(probes) = probes.filter(|p| !p.is_empty() && !rows.is_empty()) {
+        let stations = beam_state::stations(&rows);
+        let mut files = ProbeFiles::create(dir, probes).map_err(Stop::output)?;
+        files
+            .write(0.0, |s| {
+                probe_sample(beam, (q, None, slip), &rows, &stations, s)
+            })
+            .map_err(Stop::output)?;
+        let blanks = files.blanks();
+        files.finish().map_err(Stop::output)?;
+        if blanks > 0 {
+            summary.warnings.push(format!(
+                "probe files: {blanks} non-finite values left empty"
+            ));
+        }
+    }
     Ok(())
 }
 
 fn run_static(
     beam: &Beam,
     load_steps: usize,
-    dir: &Path,
-    vtk: bool,
+    files: &Files,
     summary: &mut RunSummary,
     progress: &mut dyn FnMut(f64),
 ) -> Result<(), Stop> {
@@ -380,7 +443,8 @@ fn run_static(
     let sol = solve_static(beam, &opts, progress);
     clock.record(summary);
     let title = format!("{} static", summary.scene);
-    let vtk = vtk.then_some(title.as_str());
+    let vtk = files.vtk.then_some(title.as_str());
+    let (dir, probes) = (files.dir, Some(&files.output.probes[..]));
     let sol = match sol {
         Ok(sol) => sol,
         Err(e) => {
@@ -402,7 +466,8 @@ fn run_static(
                 summary.warnings.push(format!(
                     "the files hold the last equilibrium found, at load fraction {reached:.6}"
                 ));
-                write_state(beam, (&last.q, &last.slip, &last.points), dir, vtk, summary)?;
+                let last = (&last.q[..], &last.slip[..], &last.points[..]);
+                write_state(beam, last, dir, vtk, probes, summary)?;
             }
             return Err(stop);
         }
@@ -415,33 +480,34 @@ fn run_static(
             sol.cuts
         ));
     }
-    write_state(beam, (&sol.q, &sol.slip, &sol.points), dir, vtk, summary)
-}
-
-/// Centreline of `q` sampled 4 times per element (m).
-fn centreline(beam: &Beam, q: &[f64]) -> Vec<[f64; 3]> {
-    let samples = 4 * beam.spec().elements;
-    (0..=samples)
-        .map(|i| beam.sample(q, beam.length() * i as f64 / samples as f64).0)
-        .collect()
+    write_state(
+        beam,
+        (&sol.q, &sol.slip, &sol.points),
+        dir,
+        vtk,
+        probes,
+        summary,
+    )
 }
 
 fn run_dynamics(
     beam: &Beam,
     opts: &DynamicOptions,
     init: &InitialState,
-    dir: &Path,
-    vtk: bool,
+    out: &Files,
     summary: &mut RunSummary,
     progress: &mut dyn FnMut(f64),
 ) -> Result<(), Stop> {
+    let dir = out.dir;
     let moving = beam.has_moving_supports();
     let extra: &[&str] = if moving {
         &["non_potential", "support_work"]
     } else {
         &["non_potential"]
     };
-    let mut files = FrameFiles::create(dir, vtk, extra).map_err(Stop::output)?;
+    let mut files = FrameFiles::create(dir, out.vtk, extra).map_err(Stop::output)?;
+    let mut probes = ProbeFiles::create(dir, &out.output.probes).map_err(Stop::output)?;
+    let mut envelopes = Envelopes::new(out.output.range_window);
     let n = beam.spec().elements;
     let nd = beam.node_coords();
     let k = n * nd;
@@ -471,8 +537,19 @@ fn run_dynamics(
             e.supports,
         ];
         let energies = &all[..if moving { 7 } else { 6 }];
-        if let Err(err) = files.write(f.t, x, v, energies, || centreline(beam, f.q)) {
+        let rows = beam_state::rows(beam, f.q, f.slip, f.points);
+        let stations = beam_state::stations(&rows);
+        if let Err(err) = files.write(f.t, x, v, energies, || beam_state::vtk_frame(&rows)) {
             write_error = Some(format!("writing results: {err}"));
+        }
+        let state = (f.q, Some(f.v), f.slip);
+        let written = if rows.is_empty() {
+            Ok(())
+        } else {
+            probes.write(f.t, |s| probe_sample(beam, state, &rows, &stations, s))
+        };
+        if let Err(err) = written.and_then(|()| envelopes.add(f.t, &stations)) {
+            write_error = Some(err);
         }
         last_q.copy_from_slice(f.q);
         last_slip.copy_from_slice(f.slip);
@@ -489,6 +566,14 @@ fn run_dynamics(
             "tip.csv, energy.csv: {blanks} non-finite values left empty"
         ));
     }
+    let blanks = probes.blanks();
+    probes.finish().map_err(Stop::output)?;
+    if blanks > 0 {
+        summary.warnings.push(format!(
+            "probe files: {blanks} non-finite values left empty"
+        ));
+    }
+    finish_range(&envelopes, dir, summary)?;
     if let Some(e) = write_error {
         return Err(Stop::output(e));
     }
@@ -504,6 +589,7 @@ fn run_dynamics(
                     beam,
                     (&last_q, &last_slip, &last_points),
                     dir,
+                    None,
                     None,
                     summary,
                 )?;
@@ -557,5 +643,34 @@ fn run_dynamics(
             s.balance_error, s.time_step
         ));
     }
-    write_state(beam, (&s.q, &s.slip, &last_points), dir, None, summary)
+    write_state(
+        beam,
+        (&s.q, &s.slip, &last_points),
+        dir,
+        None,
+        None,
+        summary,
+    )
+}
+
+/// Writes `range.csv` from `envelopes`; warns of a window that took no frame and of empty
+/// fields.
+pub(crate) fn finish_range(
+    envelopes: &Envelopes,
+    dir: &Path,
+    summary: &mut RunSummary,
+) -> Result<(), Stop> {
+    if envelopes.frames() == 0 {
+        summary.warnings.push(
+            "range.csv: no output frame in output.range_window; the file holds only its header"
+                .into(),
+        );
+    }
+    let blanks = envelopes.write(dir).map_err(Stop::output)?;
+    if blanks > 0 {
+        summary.warnings.push(format!(
+            "range.csv: {blanks} fields left empty (a quantity no frame in the window defined)"
+        ));
+    }
+    Ok(())
 }

@@ -28,6 +28,10 @@ pub(crate) struct Row {
     pub tension: f64,
     /// Secant bending stiffness |M| / |kappa| (N m^2); at zero curvature the tangent.
     pub stiffness: f64,
+    /// Bending moment (N m): the section law's at the row's strain, curvature and slip state,
+    /// signed like the curvature (planar) or its magnitude (3D); at an end, with a law with
+    /// slip state, the stiffness times the curvature.
+    pub moment: f64,
     /// Curvature components (kappa_y, kappa_z) (1/m).
     kappa: [f64; 2],
     /// Axial strain.
@@ -51,6 +55,7 @@ pub(crate) fn rows(beam: &Beam, q: &[f64], slip: &[f64], points: &[PointState]) 
             curvature: 0.0,
             tension: ea * p.eps,
             stiffness: 0.0,
+            moment: 0.0,
             kappa: [p.kappa_y, p.kappa_z],
             eps: p.eps,
             point,
@@ -64,6 +69,7 @@ pub(crate) fn rows(beam: &Beam, q: &[f64], slip: &[f64], points: &[PointState]) 
             curvature: 0.0,
             tension: ea * pt.eps,
             stiffness: 0.0,
+            moment: 0.0,
             kappa: [pt.kappa_y, pt.kappa],
             eps: pt.eps,
             point: i,
@@ -76,7 +82,14 @@ pub(crate) fn rows(beam: &Beam, q: &[f64], slip: &[f64], points: &[PointState]) 
         let st = law.station(r.s);
         let [ky, kz] = r.kappa;
         r.curvature = if planar { kz } else { ky.hypot(kz) };
-        r.stiffness = secant(law, &st, r.eps, r.kappa, sl);
+        r.moment = moment(law, &st, r.eps, r.kappa, sl, planar);
+        // The secant from the moment just evaluated where it is the same quotient as
+        // `secant`'s (one law evaluation a row, not two); `secant` at zero curvature.
+        r.stiffness = match (planar, ky, kz) {
+            (true, _, kz) if kz != 0.0 => r.moment / kz,
+            (false, ky, kz) if ky != 0.0 => r.moment / ky.hypot(kz),
+            _ => secant(law, &st, r.eps, r.kappa, sl),
+        };
     }
     // A law with slip state has it at the bending points only: at the ends, whose curvature
     // and state differ from the nearest point's, the stiffness is that point's (a slipped
@@ -86,12 +99,62 @@ pub(crate) fn rows(beam: &Beam, q: &[f64], slip: &[f64], points: &[PointState]) 
     if law.state_len() > 0 && n > 2 {
         if out[0].s == 0.0 {
             out[0].stiffness = out[1].stiffness;
+            out[0].moment = out[0].stiffness * out[0].curvature;
         }
         if out[n - 1].s == beam.length() {
             out[n - 1].stiffness = out[n - 2].stiffness;
+            out[n - 1].moment = out[n - 1].stiffness * out[n - 1].curvature;
         }
     }
     out
+}
+
+/// The law's bending moment at `(eps, kappa)` with slip state `sl` (N m): `M_z` in the plane
+/// (`planar`), else the magnitude of the moment vector.
+fn moment(
+    law: &SectionLaw,
+    st: &Station,
+    eps: f64,
+    [ky, kz]: [f64; 2],
+    sl: &[f64],
+    planar: bool,
+) -> f64 {
+    let mut trial = vec![0.0; sl.len()];
+    if planar || ky == 0.0 && kz == 0.0 {
+        let m = law.planar(st, eps, kz, sl, &mut trial).moment;
+        return if planar { m } else { m.abs() };
+    }
+    let r = law.vector(st, eps, [ky, kz], sl, &mut trial);
+    r.moment[0].hypot(r.moment[1])
+}
+
+/// The rows as the stations along the strand that probes and range envelopes read.
+pub(crate) fn stations(rows: &[Row]) -> Vec<crate::along::Station> {
+    rows.iter()
+        .map(|r| crate::along::Station {
+            s: r.s,
+            position: r.position,
+            curvature: r.curvature,
+            moment: r.moment,
+            tension: r.tension,
+            stiffness: Some(r.stiffness),
+        })
+        .collect()
+}
+
+/// Sticking and slipping wires at row `r` of the state with slip state `slip` (the counts of
+/// `wires.csv` there; at an end, those of the nearest bending point).
+pub(crate) fn wire_counts(beam: &Beam, r: &Row, slip: &[f64]) -> (usize, usize) {
+    let law = beam.law();
+    let st = law.station(r.s);
+    let sl = beam.point_slip(slip, r.point);
+    let report = if beam.spec().element == ElementKind::Planar {
+        law.planar_wires(&st, r.eps, r.kappa[1], sl)
+    } else {
+        law.vector_wires(&st, r.eps, r.kappa, sl)
+    };
+    let slipping = report.iter().filter(|w| w.state == WireState::Slip).count();
+    (report.len() - slipping, slipping)
 }
 
 /// Secant stiffness |M| / |kappa| of the law at `(eps, kappa)` with slip state `sl`; at zero
@@ -120,7 +183,7 @@ pub(crate) fn write(beam: &Beam, rows: &[Row], slip: &[f64], dir: &Path) -> Resu
     let planar = beam.spec().element == ElementKind::Planar;
     for r in rows {
         let [x, y, z] = r.position;
-        c.row(&[r.s, x, y, z, r.curvature, r.tension, r.stiffness])
+        c.row(&[r.s, x, y, z, r.curvature, r.tension, r.stiffness, r.moment])
             .map_err(e)?;
         // The per-wire table, at the bending points (not the ends): phases from the neutral
         // axis of the current bending direction, the planar convention for the planar
@@ -158,19 +221,24 @@ pub(crate) fn write(beam: &Beam, rows: &[Row], slip: &[f64], dir: &Path) -> Resu
     Ok(blanks)
 }
 
-/// Writes the static state as `vtk/centerline_00000.vtk`, the one frame of a static run, with
-/// the rows' curvature, tension and bending stiffness as point data.
-pub(crate) fn write_vtk(rows: &[Row], dir: &Path, title: &str) -> Result<(), String> {
-    let points: Vec<[f64; 3]> = rows.iter().map(|r| r.position).collect();
+/// The rows as a VTK polyline: positions (m) and the point data of every frame (curvature,
+/// tension, bending stiffness, moment).
+pub(crate) fn vtk_frame(rows: &[Row]) -> crate::output::VtkFrame {
     let column = |f: fn(&Row) -> f64| rows.iter().map(f).collect::<Vec<f64>>();
-    write_static_vtk(
-        dir,
-        title,
-        &points,
-        &[
+    crate::output::VtkFrame {
+        points: rows.iter().map(|r| r.position).collect(),
+        scalars: vec![
             ("curvature", column(|r| r.curvature)),
             ("tension", column(|r| r.tension)),
             ("bending_stiffness", column(|r| r.stiffness)),
+            ("moment", column(|r| r.moment)),
         ],
-    )
+    }
+}
+
+/// Writes the static state as `vtk/centerline_00000.vtk`, the one frame of a static run, with
+/// the point data of [`vtk_frame`].
+pub(crate) fn write_vtk(rows: &[Row], dir: &Path, title: &str) -> Result<(), String> {
+    let f = vtk_frame(rows);
+    write_static_vtk(dir, title, &f.points, &f.scalars)
 }

@@ -33,8 +33,11 @@ use super::budget;
 use super::record::{
     BALANCE_WARNING, Failure, RunError, RunOptions, RunSummary, Stop, finish, io_err,
 };
-use crate::output::{CENTERLINE_COLUMNS, Csv, FrameFiles, number, write_static_vtk};
-use crate::scene::{Analysis, End, IntegratorKind, Scene, SupportKind};
+use crate::along;
+use crate::output::{CENTERLINE_COLUMNS, Csv, FrameFiles, VtkFrame, number, write_static_vtk};
+use crate::probe::{ProbeFiles, ProbeSample};
+use crate::range::Envelopes;
+use crate::scene::{Analysis, End, IntegratorKind, Output, Scene, SupportKind};
 use strand_ancf::beam::SupportMotion;
 
 /// Safety factor on the explicit stable step of the fine model. (With the step at 0.9 of
@@ -210,9 +213,8 @@ pub(crate) fn run_fine(
                     &mut state,
                     &motions,
                     &frames,
-                    rot,
-                    &dir,
-                    opts.vtk,
+                    (rot, plane),
+                    (&dir, opts.vtk, &scene.output),
                     &mut summary,
                     &mut |f| progress(name, f),
                 )
@@ -220,13 +222,15 @@ pub(crate) fn run_fine(
         }
     };
     // The final (or last computed) state along the strand, and the contact states.
+    let statics = analysis == "static";
     let written = write_state(
         &model,
         &state,
-        rot,
-        plane,
+        (rot, plane),
         &dir,
-        opts.vtk && analysis == "static",
+        opts.vtk && statics,
+        if statics { &scene.output.probes } else { &[] },
+        &mut summary,
     )
     .map_err(Stop::output);
     let tip = rot
@@ -410,14 +414,14 @@ impl Frames {
     }
 }
 
+#[allow(clippy::too_many_arguments)]
 fn run_dynamic(
     model: &mut FineModel,
     state: &mut ModelState,
     motions: &[Option<SupportMotion>; 2],
     frames: &Frames,
-    rot: UnitQuaternion<f64>,
-    dir: &Path,
-    vtk: bool,
+    (rot, plane): (UnitQuaternion<f64>, Option<Vector3<f64>>),
+    (dir, vtk, output): (&Path, bool, &Output),
     summary: &mut RunSummary,
     progress: &mut dyn FnMut(f64),
 ) -> Result<(), Stop> {
@@ -427,6 +431,8 @@ fn run_dynamic(
         extra.push("support_work");
     }
     let mut files = FrameFiles::create(dir, vtk, &extra).map_err(Stop::output)?;
+    let mut probes = ProbeFiles::create(dir, &output.probes).map_err(Stop::output)?;
+    let mut envelopes = Envelopes::new(output.range_window);
     let ends = [fine::End::Start, fine::End::End];
     // Support displacement (model axes) at time t.
     let place = |m: usize, t: f64| -> Vector3<f64> {
@@ -467,13 +473,17 @@ fn run_dynamic(
             work,
         ];
         let n = if moving { 9 } else { 8 };
+        let (stations, loads) = measure(model, state, rot, plane);
         files.write(t, x.into(), v.into(), &energies[..n], || {
-            model
-                .core_centreline(state)
-                .iter()
-                .map(|p| (rot * p).into())
-                .collect()
-        })
+            vtk_frame(&stations)
+        })?;
+        let other = |e: String| std::io::Error::other(e);
+        probes
+            .write(t, |s| {
+                probe_sample(model, state, &loads, &stations, rot, s, true)
+            })
+            .map_err(other)?;
+        envelopes.add(t, &stations).map_err(other)
     };
     write(0.0, model, state, &e0, 0.0)
         .map_err(|e| Stop::output(format!("writing results: {e}")))?;
@@ -529,6 +539,14 @@ fn run_dynamic(
             "tip.csv, energy.csv: {blanks} non-finite values left empty"
         ));
     }
+    let blanks = probes.blanks();
+    probes.finish().map_err(Stop::output)?;
+    if blanks > 0 {
+        summary.warnings.push(format!(
+            "probe files: {blanks} non-finite values left empty"
+        ));
+    }
+    super::beam::finish_range(&envelopes, dir, summary)?;
     let relative = err / max_kinetic.max(f64::MIN_POSITIVE);
     summary.energy_balance_error = Some(err);
     summary.energy_balance_relative = Some(relative);
@@ -586,16 +604,31 @@ fn non_finite(model: &FineModel, state: &ModelState, step: usize, t: f64) -> Str
 fn write_state(
     model: &FineModel,
     state: &ModelState,
-    rot: UnitQuaternion<f64>,
-    plane: Option<Vector3<f64>>,
+    (rot, plane): (UnitQuaternion<f64>, Option<Vector3<f64>>),
     dir: &Path,
     vtk: bool,
+    probes: &[f64],
+    summary: &mut RunSummary,
 ) -> Result<(), String> {
     let mut loads = model.load_buffers();
     model.compute_loads(state, 1.0, &mut loads);
+    if !probes.is_empty() {
+        let stations = stations_of(&measure_along(model, state, &loads, plane), rot);
+        let mut files = ProbeFiles::create(dir, probes)?;
+        files.write(0.0, |s| {
+            probe_sample(model, state, &loads, &stations, rot, s, false)
+        })?;
+        let blanks = files.blanks();
+        files.finish()?;
+        if blanks > 0 {
+            summary.warnings.push(format!(
+                "probe files: {blanks} non-finite values left empty"
+            ));
+        }
+    }
     let p = dir.join("centerline.csv");
     let e = |e: std::io::Error| format!("writing {}: {e}", p.display());
-    let mut c = Csv::create(&p, &[&CENTERLINE_COLUMNS[..], &["moment"]].concat()).map_err(e)?;
+    let mut c = Csv::create(&p, &CENTERLINE_COLUMNS).map_err(e)?;
     let rows = measure_along(model, state, &loads, plane);
     let stiffness = secant_along(&rows);
     for (row, k) in rows.iter().zip(&stiffness) {
@@ -670,6 +703,106 @@ fn write_state(
         }
     }
     cc.finish().map_err(ec)
+}
+
+/// The measured stations along the core in scene axes (with their secant stiffness) and the
+/// loads they were measured from.
+fn measure(
+    model: &FineModel,
+    state: &ModelState,
+    rot: UnitQuaternion<f64>,
+    plane: Option<Vector3<f64>>,
+) -> (Vec<along::Station>, Vec<WireLoads>) {
+    let mut loads = model.load_buffers();
+    model.compute_loads(state, 1.0, &mut loads);
+    let rows = measure_along(model, state, &loads, plane);
+    (stations_of(&rows, rot), loads)
+}
+
+/// The stations as probes and range envelopes read them, positions in scene axes.
+fn stations_of(rows: &[Station], rot: UnitQuaternion<f64>) -> Vec<along::Station> {
+    rows.iter()
+        .zip(secant_along(rows))
+        .map(|(r, k)| along::Station {
+            s: r.s,
+            position: (rot * r.position).into(),
+            curvature: r.curvature,
+            moment: r.moment,
+            tension: r.tension,
+            stiffness: k,
+        })
+        .collect()
+}
+
+/// A dynamic frame's VTK polyline: the core's centreline nodes with curvature, tension and
+/// moment (the stiffness, undefined on a straight strand, is left out).
+fn vtk_frame(stations: &[along::Station]) -> VtkFrame {
+    let column = |f: fn(&along::Station) -> f64| stations.iter().map(f).collect::<Vec<f64>>();
+    VtkFrame {
+        points: stations.iter().map(|p| p.position).collect(),
+        scalars: vec![
+            ("curvature", column(|p| p.curvature)),
+            ("tension", column(|p| p.tension)),
+            ("moment", column(|p| p.moment)),
+        ],
+    }
+}
+
+/// The fine model at probe `s` (m): position, curvature, moment and tension interpolated
+/// linearly between the measured stations around s; the velocity (with `moving`, else zero)
+/// of the core's axis at s, on the segment whose rest span is nearest; for each helical
+/// wire the state of its contact point nearest s (open contacts count as neither).
+fn probe_sample(
+    model: &FineModel,
+    state: &ModelState,
+    loads: &[WireLoads],
+    stations: &[along::Station],
+    rot: UnitQuaternion<f64>,
+    s: f64,
+    moving: bool,
+) -> ProbeSample {
+    let p = along::interpolate(stations, s);
+    let core = &model.wires[0].chain;
+    let velocity = if moving {
+        let k = (0..core.len())
+            .min_by(|&a, &b| {
+                let d = |k: usize| (core.rest[k].position.x - s).abs();
+                d(a).total_cmp(&d(b))
+            })
+            .unwrap_or(0);
+        let half = 0.5 * core.segments[k].length;
+        let off = Vector3::new((s - core.rest[k].position.x).clamp(-half, half), 0.0, 0.0);
+        (rot * fine::dynamics::point_velocity(model, state, 0, k, &off)).into()
+    } else {
+        [0.0; 3]
+    };
+    let (mut sticking, mut slipping) = (0, 0);
+    for (wire, l) in model.wires.iter().zip(loads).skip(1) {
+        let nearest = wire
+            .contacts
+            .iter()
+            .zip(&l.contacts)
+            .min_by(|(a, _), (b, _)| {
+                let d = |c: &fine::ContactPoint| {
+                    (wire.chain.rest[c.segment].point(&c.offset).x - s).abs()
+                };
+                d(a).total_cmp(&d(b))
+            });
+        match nearest.map(|(_, cl)| cl.state) {
+            Some(ContactState::Stick) => sticking += 1,
+            Some(ContactState::Slip) => slipping += 1,
+            _ => {}
+        }
+    }
+    ProbeSample {
+        position: p.position,
+        velocity,
+        curvature: p.curvature,
+        moment: p.moment,
+        tension: p.tension,
+        sticking,
+        slipping,
+    }
 }
 
 /// One measured station along the core.

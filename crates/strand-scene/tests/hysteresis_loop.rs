@@ -1,0 +1,172 @@
+//! The moment-curvature loop a probe records, against the section law's own: a steel strand,
+//! clamped at the start and pulled axially at the pinned end, whose end is then swung up and
+//! down twice, so that the sections near the root cycle through stick and slip. Probes at every
+//! bending point (two elements of three Gauss points), a frame every time step.
+//!
+//! * The probe's moment is the law's at the probe's strain and curvature, driven by this test
+//!   from the unslipped state through the same frames (the loop closes on the law's loop).
+//! * Over one full cycle, the area the probe's loop encloses (trapezoidal sum of M dkappa)
+//!   equals the slip work the law dissipates over it, plus the change of its stored energy
+//!   less the axial work (both small on a closed cycle), within the trapezoidal rule's error.
+//! * The slip work of every bending point, weighted by its quadrature weight, sums to the
+//!   `dissipated` of `energy.csv`.
+
+mod common;
+
+use common::csv_columns;
+use serde_json::json;
+use strand_core::{LawKind, SectionLaw};
+use strand_scene::{RunOptions, Scene, run_scene};
+
+const L: f64 = 0.5;
+const ELEMENTS: usize = 2;
+
+/// Gauss-Legendre 3-point nodes and weights on [0, 1].
+const GAUSS3: [(f64, f64); 3] = [
+    (0.112_701_665_379_258_3, 5.0 / 18.0),
+    (0.5, 8.0 / 18.0),
+    (0.887_298_334_620_741_7, 5.0 / 18.0),
+];
+
+fn scene(probes: &[f64]) -> serde_json::Value {
+    // Axial pull 5e-4 m (strain 1e-3, about 27 kN) over 0.1 s, held; then the end swings
+    // between y = +A and -A with period 0.4 s (quasi-static: the strand's lowest transverse mode under
+    // that tension is near 150 Hz).
+    let (dx, a) = (5e-4, 4e-3);
+    json!({
+        "name": "cycled-section",
+        "strand": {
+            "length": L,
+            "core": { "diameter": 0.0052, "youngs_modulus": 1.95e11, "poisson_ratio": 0.3, "density": 7850.0 },
+            "layers": [ { "wires": 6, "diameter": 0.005, "pitch": 0.22,
+                          "youngs_modulus": 1.95e11, "poisson_ratio": 0.3, "density": 7850.0 } ],
+            "friction": 0.4
+        },
+        "law": "hysteretic",
+        "supports": [
+            { "at": "start", "kind": "clamped" },
+            { "at": "end", "kind": "pinned", "motion": [
+                [0.1, dx, 0.0, 0.0], [0.2, dx, a, 0.0], [0.4, dx, -a, 0.0],
+                [0.6, dx, a, 0.0], [0.8, dx, -a, 0.0], [1.0, dx, a, 0.0] ] }
+        ],
+        "analysis": { "kind": "dynamic", "duration": 1.0, "integrator": "generalized-alpha",
+                      "time_step": 2.5e-4, "output_interval": 2.5e-4, "spectral_radius": 0.8 },
+        "models": { "equivalent": { "elements": ELEMENTS, "integration_points": 3 } },
+        "output": { "probes": probes }
+    })
+}
+
+#[test]
+fn a_cycled_section_closes_on_the_laws_loop_and_its_area_is_the_slip_work() {
+    let h = L / ELEMENTS as f64;
+    let points: Vec<(f64, f64)> = (0..ELEMENTS)
+        .flat_map(|e| GAUSS3.map(|(x, w)| ((e as f64 + x) * h, w * h)))
+        .collect();
+    let probes: Vec<f64> = points.iter().map(|p| p.0).collect();
+    let text = scene(&probes).to_string();
+    let scene = Scene::parse(&text).unwrap();
+    let out = std::env::temp_dir().join(format!("strand-loop-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let opts = RunOptions {
+        out: out.clone(),
+        vtk: false,
+    };
+    let s = run_scene(&scene, &opts, &mut |_, _| {}).unwrap();
+    assert!(!s[0].failed(), "{:?}", s[0].failure());
+    // A step cut in halves commits a state between two frames: with slip limits that change
+    // with the tension, the law's path would then differ from the frames'.
+    assert!(
+        s[0].warnings.iter().all(|w| !w.contains("cut")),
+        "no step was cut (each committed step is a frame): {:?}",
+        s[0].warnings
+    );
+    let dir = out.join("equivalent");
+    // The probes sit on the bending points (the rows of centerline.csv).
+    let rows = csv_columns(&dir.join("centerline.csv"))["s"].clone();
+    for p in &probes {
+        assert!(
+            rows.iter().any(|r| (r - p).abs() < 1e-12),
+            "{p} is a bending point"
+        );
+    }
+
+    let law = SectionLaw::with_options(&scene.strand, LawKind::Hysteretic, &scene.section);
+    let ea = law.axial_stiffness();
+    let k_min = scene
+        .strand
+        .min_bending_stiffness(scene.section.base_stiffness);
+    let mut total_slip_work = 0.0;
+    let mut largest_loop = 0.0f64;
+    for (&(s, weight), p) in points.iter().zip(&probes) {
+        let c = csv_columns(&dir.join(format!("probe_{p}.csv")));
+        let (t, kappa, moment, tension) = (&c["t"], &c["curvature"], &c["moment"], &c["tension"]);
+        let st = law.station(s);
+        // The law's all-stick tangent (its largest): the slope of M(kappa) lies in
+        // [K_min, K_stick] along any path.
+        let mut scratch = vec![0.0; law.state_len()];
+        let zero = vec![0.0; law.state_len()];
+        let k_stick = law
+            .planar(&st, tension[1] / ea, 1e-9, &zero, &mut scratch)
+            .moment_curvature;
+        // Drive the law through the probe's frames.
+        let mut slip = vec![0.0; law.state_len()];
+        let mut trial = slip.clone();
+        let (mut energy, mut work) = (vec![0.0], vec![0.0]);
+        let scale = moment.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for k in 1..t.len() {
+            let r = law.planar(&st, tension[k] / ea, kappa[k], &slip, &mut trial);
+            // Same strain, curvature and state as the run: the same moment, to round-off
+            // (the strain read back from the tension, EA eps / EA).
+            assert!(
+                (r.moment - moment[k]).abs() <= 1e-9 * scale.max(1e-12),
+                "s = {s}, t = {}: the probe's moment {} vs the law's {}",
+                t[k],
+                moment[k],
+                r.moment
+            );
+            slip.copy_from_slice(&trial);
+            energy.push(r.energy);
+            work.push(work[k - 1] + r.slip_work);
+        }
+        total_slip_work += weight * work[t.len() - 1];
+        // One full cycle, between the end's visits of +A at t = 0.6 s and 1 s.
+        let at = |time: f64| t.iter().position(|x| (x - time).abs() < 1e-9).unwrap();
+        let (a, b) = (at(0.6), at(1.0));
+        let mut area = 0.0;
+        let mut axial = 0.0;
+        let mut bound = 0.0;
+        for k in a + 1..=b {
+            let dk = kappa[k] - kappa[k - 1];
+            area += 0.5 * (moment[k] + moment[k - 1]) * dk;
+            axial += 0.5 * (tension[k] + tension[k - 1]) * (tension[k] - tension[k - 1]) / ea;
+            // The trapezoidal rule on a step where the slope of M(kappa) stays in
+            // [K_min, K_stick] errs by at most (K_stick - K_min) dkappa^2 / 8.
+            bound += (k_stick - k_min) * dk * dk / 8.0;
+        }
+        let slip_work = work[b] - work[a];
+        let stored = energy[b] - energy[a];
+        // Work balance of the section over the cycle: M dkappa + N deps = dE + slip work.
+        let balance = area + axial - stored - slip_work;
+        let roundoff = 1e-9 * (area.abs() + axial.abs() + stored.abs() + slip_work);
+        assert!(
+            balance.abs() <= bound + roundoff,
+            "s = {s}: loop area {area:e} + axial work {axial:e} - stored {stored:e} vs slip work \
+             {slip_work:e} (off by {balance:e}, bound {bound:e})"
+        );
+        largest_loop = largest_loop.max(area);
+        eprintln!(
+            "s = {s:.4}: loop area {area:.4e} J/m, slip work {slip_work:.4e} J/m, stored change \
+             {stored:.2e}, axial {axial:.2e}, trapezoid bound {bound:.2e}"
+        );
+    }
+    // The cycle slips: a loop with area, not a line.
+    assert!(largest_loop > 0.0, "no loop: {largest_loop}");
+    let dissipated = *csv_columns(&dir.join("energy.csv"))["dissipated"]
+        .last()
+        .unwrap();
+    assert!(
+        (total_slip_work - dissipated).abs() <= 1e-9 * dissipated.abs().max(1e-12),
+        "the bending points' slip work {total_slip_work:e} J vs energy.csv {dissipated:e} J"
+    );
+    let _ = std::fs::remove_dir_all(out);
+}
