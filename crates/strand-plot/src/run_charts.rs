@@ -92,7 +92,7 @@ pub fn plot_run(
     };
     let mut series = along("bending_stiffness", &bent);
     let ends = (0.0, strand.length());
-    if strand.layer().is_some() {
+    if !strand.layers().is_empty() {
         for (k, what, color) in [(k_min, "K_min", 6), (k_max, "K_max", 3)] {
             series.push(Series::new(
                 format!("{what} = {} N m^2", short(k)),
