@@ -911,13 +911,33 @@ mod tests {
     use super::*;
     use crate::StrandSpec;
 
+    /// The paper's strand with a second layer of twelve wires laid the other way, a third
+    /// of its modulus (R_2 = 4.5 mm).
+    fn two_layers() -> Strand {
+        let mut spec = StrandSpec::paper(1.0, 2.0e9, 5747.0);
+        let mut outer = spec.layers[0];
+        outer.wires = 12;
+        outer.lay_angle = 15f64.to_radians();
+        outer.direction = crate::LayDirection::Left;
+        outer.wire.material.youngs_modulus /= 3.0;
+        spec.layers.push(outer);
+        Strand::new(spec).unwrap()
+    }
+
     /// The inlined planar loops of the `continuous` and `hysteretic` laws give exactly the
-    /// generic slider's values, sticking and slipping on both sides.
+    /// generic slider's values, sticking and slipping on both sides, for one layer and for
+    /// two (each layer's wires with its own spring and friction limits).
     #[test]
     fn inlined_planar_loops_match_the_slider() {
-        let strand = Strand::new(StrandSpec::paper(1.0, 2.0e9, 5747.0)).unwrap();
-        for kind in [LawKind::Continuous, LawKind::Hysteretic] {
-            let law = SectionLaw::new(&strand, kind);
+        let strands = [
+            Strand::new(StrandSpec::paper(1.0, 2.0e9, 5747.0)).unwrap(),
+            two_layers(),
+        ];
+        for (strand, kind) in strands
+            .iter()
+            .flat_map(|s| [(s, LawKind::Continuous), (s, LawKind::Hysteretic)])
+        {
+            let law = SectionLaw::new(strand, kind);
             let n = law.sliders();
             let (mut count, mut paths) = ([0usize; 2], [0usize; 2]);
             for j in 0..400 {
