@@ -20,7 +20,7 @@ pub(super) struct PlanarWires {
 /// the station's smallest gain times the friction scale leaves one possible.
 #[inline(always)]
 pub(super) fn continuous_wires<const BOOKS: bool>(
-    law: LayerLaw,
+    law: &LayerLaw,
     p: &PlanarWires,
     kappa: f64,
     scale: f64,
@@ -39,7 +39,7 @@ pub(super) fn continuous_wires<const BOOKS: bool>(
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(super) fn hysteretic_wires<const BOOKS: bool>(
-    law: LayerLaw,
+    law: &LayerLaw,
     p: &PlanarWires,
     kappa: f64,
     scale: f64,

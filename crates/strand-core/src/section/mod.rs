@@ -135,6 +135,9 @@ pub struct SectionLaw {
     /// The accumulated-pressure system of the friction limits (`section.slip_pressure`);
     /// `None` where every layer keeps the capstan gain.
     pressure: Option<PressureSystem>,
+    /// The layers' wires in all, kept for [`Self::state_len`], which element loops call per
+    /// point.
+    sliders: usize,
     strand: Strand,
     options: SectionOptions,
 }
@@ -248,6 +251,7 @@ impl SectionLaw {
             kind,
             axial_stiffness,
             base_bending,
+            sliders: layers.iter().map(|l: &LayerLaw| l.wires).sum(),
             layers,
             pressure,
             strand: strand.clone(),
@@ -277,6 +281,7 @@ impl SectionLaw {
             base_bending: bending_stiffness,
             layers: Vec::new(),
             pressure: None,
+            sliders: 0,
             strand: strand.clone(),
             options: SectionOptions::default(),
         }
@@ -366,6 +371,9 @@ impl SectionLaw {
     /// layer slips below it (infinite without layers).
     #[inline(always)]
     fn still(&self, eps: f64) -> f64 {
+        if let [law] = self.layers.as_slice() {
+            return law.still_curvature(law.cap_scale(eps).0);
+        }
         self.layers
             .iter()
             .map(|l| l.still_curvature(l.cap_scale(eps).0))
@@ -373,8 +381,9 @@ impl SectionLaw {
     }
     /// Number of friction sliders per station, over every layer (0 for `constant` and plain
     /// wires).
+    #[inline]
     pub fn sliders(&self) -> usize {
-        self.layers.iter().map(|l| l.wires).sum()
+        self.sliders
     }
     /// Number of layers the law has sliders for (0 for `constant` and plain wires).
     pub fn layer_count(&self) -> usize {
@@ -384,6 +393,7 @@ impl SectionLaw {
     /// each wire, then the stored bending direction of the friction limits (the unit vector
     /// (y, z) of the neutral axis's reference half, (0, 0) before any; module docs); 0 for the
     /// other laws and for a strand without wires. Zeros are the straight, unslipped state.
+    #[inline]
     pub fn state_len(&self) -> usize {
         if self.kind.has_state() && self.sliders() > 0 {
             self.sliders() + DIRECTION_STATE
@@ -481,22 +491,23 @@ impl SectionLaw {
             return r;
         }
         let n = st.wires.len();
-        match self.kind {
-            LawKind::Continuous => {
-                for (law, p) in self.layers.iter().zip(&st.planar) {
+        let stateful = slip.len() > n && trial.len() == slip.len();
+        match (self.kind, self.layers.as_slice(), st.planar.as_slice()) {
+            (LawKind::Continuous, layers, planar) => {
+                for (law, p) in layers.iter().zip(planar) {
                     let (scale, dscale) = law.cap_scale(eps);
-                    continuous_wires::<true>(*law, p, kappa, scale, dscale, &mut r);
+                    continuous_wires::<true>(law, p, kappa, scale, dscale, &mut r);
                 }
             }
-            LawKind::Hysteretic if slip.len() > n && trial.len() == slip.len() => {
+            (LawKind::Hysteretic, layers, planar) if stateful => {
                 // Each layer's wires, one after another in the state.
                 let (mut sl, mut tr) = (&slip[..n], &mut trial[..n]);
-                for (law, p) in self.layers.iter().zip(&st.planar) {
+                for (law, p) in layers.iter().zip(planar) {
                     let (scale, dscale) = law.cap_scale(eps);
                     let m = p.lever.len();
                     let (s_here, s_rest) = sl.split_at(m);
                     let (t_here, t_rest) = tr.split_at_mut(m);
-                    hysteretic_wires::<true>(*law, p, kappa, scale, dscale, s_here, t_here, &mut r);
+                    hysteretic_wires::<true>(law, p, kappa, scale, dscale, s_here, t_here, &mut r);
                     (sl, tr) = (s_rest, t_rest);
                 }
             }
@@ -543,19 +554,31 @@ impl SectionLaw {
             };
         }
         let n = st.wires.len();
-        match self.kind {
-            LawKind::Continuous => {
-                for (law, p) in self.layers.iter().zip(&st.planar) {
+        match (self.kind, self.layers.as_slice(), st.planar.as_slice()) {
+            // One layer on its own: the loop over layers left out, as the element loops that
+            // inline this keep their sums in registers (measured: 2 % of the section-3
+            // pendulum's instructions with the loop).
+            (LawKind::Continuous, [law], [p]) => {
+                let (scale, dscale) = law.cap_scale(eps);
+                continuous_wires::<false>(law, p, kappa, scale, dscale, &mut r);
+            }
+            (LawKind::Hysteretic, [law], [p]) if slip.len() > n => {
+                let (scale, dscale) = law.cap_scale(eps);
+                let sl = &slip[..n];
+                hysteretic_wires::<false>(law, p, kappa, scale, dscale, sl, &mut [], &mut r);
+            }
+            (LawKind::Continuous, layers, planar) => {
+                for (law, p) in layers.iter().zip(planar) {
                     let (scale, dscale) = law.cap_scale(eps);
-                    continuous_wires::<false>(*law, p, kappa, scale, dscale, &mut r);
+                    continuous_wires::<false>(law, p, kappa, scale, dscale, &mut r);
                 }
             }
-            LawKind::Hysteretic if slip.len() > n => {
+            (LawKind::Hysteretic, layers, planar) if slip.len() > n => {
                 let mut sl = &slip[..n];
-                for (law, p) in self.layers.iter().zip(&st.planar) {
+                for (law, p) in layers.iter().zip(planar) {
                     let (scale, dscale) = law.cap_scale(eps);
                     let (here, rest) = sl.split_at(p.lever.len());
-                    hysteretic_wires::<false>(*law, p, kappa, scale, dscale, here, &mut [], &mut r);
+                    hysteretic_wires::<false>(law, p, kappa, scale, dscale, here, &mut [], &mut r);
                     sl = rest;
                 }
             }
