@@ -229,7 +229,7 @@ fn cantilever(scene: &Scene, out: &std::path::Path) -> anyhow::Result<Vec<Row>> 
     let name = &scene.name;
     let strand = &scene.strand;
     let l = strand.length();
-    let pitch = strand.layer().context("a stranded scene")?.pitch;
+    let pitch = strand.layers().first().context("a stranded scene")?.pitch;
     let penetration = scene.file.models.fine.as_ref().and_then(|f| f.penetration);
     let mut rows = Vec::new();
     let mut fine = Vec::new();

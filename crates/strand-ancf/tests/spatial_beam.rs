@@ -181,7 +181,7 @@ fn planar_and_spatial_agree_on_planar_scenes() {
     // quarter pitch against the planar element's one), so that the runs differ by the elements
     // alone, not by their quadratures.
     let points = |s: &Strand, n: usize| {
-        let pitch = s.layer().unwrap().pitch;
+        let pitch = s.layers().first().unwrap().pitch;
         Some(pitch_rule_points(s.length() / n as f64, pitch, ElementKind::Spatial) as usize)
     };
     // Statics: the paper's section-3 strand under g = 12.

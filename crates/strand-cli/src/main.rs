@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
-use strand_core::{LawKind, SectionPoint, StrandSummary};
+use strand_core::{LawKind, SectionLaw, SectionPoint, StrandSummary};
 use strand_scene::Scene;
 
 #[derive(Parser)]
@@ -366,6 +366,7 @@ fn section(
         "--at must lie on the strand, in [0, {}] m, got {at}",
         strand.length()
     );
+    SectionLaw::check(strand, law).map_err(|e| anyhow::anyhow!("{}", e.within("strand")))?;
     let summary = StrandSummary::new(strand, &scene.section);
     let point = match (strain, curvature) {
         (Some(e), Some(k)) => Some(SectionPoint::new(strand, law, &scene.section, e, k, at)),
@@ -396,9 +397,13 @@ fn opt(v: Option<f64>, unit: &str) -> String {
 
 fn print_summary(scene: &Scene, s: &StrandSummary) {
     let strand = &scene.strand;
-    let m = strand.layer().map_or(0, |l| l.wires());
+    let m: String = strand
+        .layers()
+        .iter()
+        .map(|l| format!("+{}", l.wires()))
+        .collect();
     say!(
-        "strand `{}`: 1+{m}, L = {} m, friction {}",
+        "strand `{}`: 1{m}, L = {} m, friction {}",
         scene.name,
         strand.length(),
         strand.friction()
@@ -449,6 +454,75 @@ fn print_summary(scene: &Scene, s: &StrandSummary) {
     for (k, v) in rows {
         say!("  {k:<36} {v}");
     }
+    print_layers(s);
+}
+
+/// Each layer's geometry, its interface with the layer beneath and its shares of K_min and of
+/// the stick stiffness; the strand totals below.
+fn print_layers(s: &StrandSummary) {
+    if s.layers.is_empty() {
+        return;
+    }
+    say!(
+        "\n  friction pressure: {} (section.slip_pressure)",
+        s.slip_pressure
+    );
+    say!(
+        "  {:>5} {:>5} {:>11} {:>11} {:>11} {:>8} {:>5} {:>8} {:>8} {:>12} {:>12} {:>7} {:>12} {:>12}",
+        "layer",
+        "wires",
+        "d/m",
+        "R_w/m",
+        "pitch/m",
+        "lay/deg",
+        "dir",
+        "cross/deg",
+        "contact",
+        "lift/m",
+        "K_min/N m^2",
+        "factor",
+        "K_stick/N m^2",
+        "slip/N"
+    );
+    for l in &s.layers {
+        say!(
+            "  {:>5} {:>5} {:>11.5e} {:>11.5e} {:>11.5e} {:>8.4} {:>5} {:>9.4} {:>8} {:>12.4e} {:>12.5e} {:>7.4} {:>12.5e} {:>12.5e}",
+            l.layer,
+            l.wires,
+            l.diameter,
+            l.r_w,
+            l.pitch,
+            l.lay_angle_deg,
+            l.lay_direction,
+            l.crossing_angle_deg,
+            l.contact.name(),
+            l.lift,
+            l.k_min,
+            l.stick_factor,
+            l.k_stick,
+            l.slip_force_per_strain
+        );
+    }
+    let k_min_layers: f64 = s.layers.iter().map(|l| l.k_min).sum();
+    let k_stick: f64 = s.layers.iter().map(|l| l.k_stick).sum();
+    say!(
+        "  {:>5} {:>5} {:>84} {:>12.5e} {:>7} {:>12.5e}",
+        "all",
+        s.layers.iter().map(|l| l.wires).sum::<usize>(),
+        "",
+        k_min_layers,
+        "",
+        k_stick
+    );
+    say!(
+        "  (K_min = core {:.5e} + layers {:.5e} = {:.5e} N m^2; K_max = K_min + {:.5e} = {:.5e} \
+         N m^2; slip/N: friction limit per unit strand strain of a wire at the extreme fibre)",
+        s.k_min - k_min_layers,
+        k_min_layers,
+        s.k_min,
+        k_stick,
+        s.k_max
+    );
 }
 
 fn print_point(p: &SectionPoint) {
@@ -490,13 +564,14 @@ fn print_point(p: &SectionPoint) {
         return;
     }
     say!(
-        "\n  {:>4} {:>10} {:>14} {:>14} {:>14} {:>6}",
+        "\n  {:>4} {:>10} {:>14} {:>14} {:>14} {:>6} {:>5}",
         "wire",
         "phase/deg",
         "K_stick/N m^2",
         "M_slip/N m",
         "kappa_c/(1/m)",
-        "state"
+        "state",
+        "layer"
     );
     for w in &p.wires {
         let kc = w
@@ -507,13 +582,14 @@ fn print_point(p: &SectionPoint) {
             strand_core::WireState::Slip => "slip",
         };
         say!(
-            "  {:>4} {:>10.3} {:>14.6e} {:>14.6e} {:>14} {:>6}",
+            "  {:>4} {:>10.3} {:>14.6e} {:>14.6e} {:>14} {:>6} {:>5}",
             w.wire,
             w.phase.to_degrees(),
             w.k_stick,
             w.m_slip,
             kc,
-            state
+            state,
+            w.layer
         );
     }
 }

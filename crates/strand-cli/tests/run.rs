@@ -67,7 +67,7 @@ fn static_scene_writes_centerline_wires_and_summary() {
         // The strand hangs: the last point is far below the clamp.
         assert!(rows.last().unwrap()[2] < -0.5);
         let wires = std::fs::read_to_string(dir.join("wires.csv")).unwrap();
-        assert!(wires.starts_with("s,wire,phase,critical_curvature,state\n"));
+        assert!(wires.starts_with("s,wire,phase,critical_curvature,state,layer\n"));
     }
     // Equivalent: bending stiffness between K_min and K_max everywhere (SPEC 8 Fig. 10).
     let (_, rows) = csv(&out.join("equivalent/centerline.csv"));

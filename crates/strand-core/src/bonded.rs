@@ -35,6 +35,23 @@
 //! length times m / cos(alpha), plus the core's shear energy) over these 14 amplitudes, with
 //! the contact line bonded exactly or by springs, gives the stiffness `2 U / kappa^2`.
 //!
+//! # Layers on layers
+//!
+//! Each layer has its own stick factor, that of its interface with the layer beneath
+//! ([`interface_bonded_stiffness`]): the same rod model with the layer beneath in the core's
+//! place. For the first layer that is the core itself. For layer j > 1 the wires and core
+//! beneath, all sticking, move as one body with plane sections: the model's rigid-section core,
+//! of bond radius R_j - r_wj (the surface the layer lies on), with the shear stiffness kappa G A
+//! summed over the core and the wires beneath (their sections normal to the strand, A / cos
+//! alpha, taken as A: within cos(alpha) > 0.97 for lay angles below 14 deg) and the bending
+//! stiffness E I summed likewise (it cancels in the stick factor). On a layer laid in the other
+//! direction the contact is at crossing points, not along a line; they come every 9-18 mm along
+//! a conductor's wire (`../shared` references), short against the wavelength of the bond's
+//! traction, a pitch of wire length (0.2-0.4 m), so a bond smeared along the wire carries the
+//! same traction. What the rigid bond leaves out there is the tangential compliance of each
+//! crossing (Mindlin), which softens the interface: for a crossing interface this factor is an
+//! upper bound.
+//!
 //! Checks (tests): with the wires free to slide on the core the model gives Costello's
 //! frictionless stiffness E_c I_c + m E_w I_w cos(alpha) 2 / (2 + nu sin^2(alpha)); with the
 //! bond on the wires' axes and a shear-rigid core it gives that base plus the plane-section
@@ -44,6 +61,7 @@
 use std::f64::consts::PI;
 
 use crate::geometry::Strand;
+use crate::wire::WireSpec;
 
 /// Which stick stiffness the helical wires have in the stick/slip section laws
 /// (`section.stick_stiffness`).
@@ -85,28 +103,27 @@ impl StickStiffness {
         Self::ALL.into_iter().find(|k| k.name() == name)
     }
 
-    /// Factor on the plane-section stick stiffness of `strand`'s helical wires (-): 1 for
-    /// `plane_section`; for `bonded` the rod model's [`BondedStiffness::stick_factor`] with a
-    /// rigid bond on the touching surfaces (1 without a helical layer). With one or two wires
+    /// Factor on the plane-section stick stiffness of the wires of `strand`'s layer `layer`
+    /// (0-based) (-): 1 for `plane_section`; for `bonded` the rod model's
+    /// [`BondedStiffness::stick_factor`] of the layer's interface with the layer beneath
+    /// ([`interface_bonded_stiffness`]), with a rigid bond on the touching surfaces (1 for a
+    /// layer the strand does not have). With one or two wires
     /// the model cannot carry the core's tilt, which then varies along the strand, so their
     /// factor takes the core rigid in shear and keeps only the wires' own compliance (an
     /// upper bound on the factor).
-    pub fn factor(self, strand: &Strand) -> f64 {
+    pub fn factor(self, strand: &Strand, layer: usize) -> f64 {
         match self {
             StickStiffness::PlaneSection => 1.0,
             StickStiffness::Bonded => {
-                let Some(layer) = strand.layer() else {
+                let Some(h) = strand.layers().get(layer) else {
                     return 1.0;
                 };
                 let options = BondedOptions {
-                    core_shear: if layer.wires() < 3 {
-                        f64::INFINITY
-                    } else {
-                        1.0
-                    },
+                    core_shear: if h.wires() < 3 { f64::INFINITY } else { 1.0 },
                     ..Default::default()
                 };
-                bonded_stiffness(strand, &options).map_or(1.0, |b| b.stick_factor())
+                interface_bonded_stiffness(strand, layer, &options)
+                    .map_or(1.0, |b| b.stick_factor())
             }
         }
     }
@@ -176,16 +193,28 @@ impl BondedStiffness {
     }
 }
 
-/// Bonded and free bending stiffness of `strand` under `options`; `None` for a strand
-/// without a helical layer, and for one or two wires unless the core's shear is rigid
-/// (`core_shear` infinite): their tractions then load the core with a tilt that varies
-/// along the strand (the second harmonic of the phase), which this model leaves out.
+/// Bonded and free bending stiffness of `strand`'s first layer on the core under `options`
+/// ([`interface_bonded_stiffness`] of layer 0).
 pub fn bonded_stiffness(strand: &Strand, options: &BondedOptions) -> Option<BondedStiffness> {
-    let layer = strand.layer()?;
+    interface_bonded_stiffness(strand, 0, options)
+}
+
+/// Bonded and free bending stiffness of `strand`'s layer `layer` (0-based) on the layer
+/// beneath under `options` (module docs, "Layers on layers"); `None` for a layer the strand
+/// does not have, and for one or two wires unless the core's shear is rigid (`core_shear`
+/// infinite): their tractions then load the core with a tilt that varies along the strand
+/// (the second harmonic of the phase), which this model leaves out.
+pub fn interface_bonded_stiffness(
+    strand: &Strand,
+    layer: usize,
+    options: &BondedOptions,
+) -> Option<BondedStiffness> {
+    let index = layer;
+    let layer = *strand.layers().get(index)?;
     if layer.wires() < 3 && options.core_shear.is_finite() {
         return None;
     }
-    let rod = Rods::new(strand, options);
+    let rod = Rods::new(strand, index, options);
     let free = rod.stiffness(Some(0.0), options.normal_stiffness);
     let bonded = rod.stiffness(options.tangential_stiffness, options.normal_stiffness);
     Some(BondedStiffness {
@@ -246,8 +275,9 @@ impl Form {
 }
 
 impl Rods {
-    fn new(strand: &Strand, o: &BondedOptions) -> Self {
-        let layer = strand.layer().expect("a helical layer");
+    /// The rod model of `strand`'s layer `index` on what lies beneath it (module docs).
+    fn new(strand: &Strand, index: usize, o: &BondedOptions) -> Self {
+        let layer = &strand.layers()[index];
         let w = &layer.spec.wire;
         let c = strand.core();
         let alpha = layer.lay_angle();
@@ -259,11 +289,34 @@ impl Rods {
             w.material.poisson_ratio,
         );
         let k = alpha.sin() / r;
+        // The core, or the core and the layers beneath as one rigid-section body.
+        let shear =
+            |w: &WireSpec| ks(w.material.poisson_ratio) * w.material.shear_modulus() * w.area();
+        let bending = |w: &WireSpec| w.material.youngs_modulus * w.inertia();
+        let (bond, core_shear, core_bending) = if index == 0 {
+            (
+                c.radius(),
+                o.core_shear * ks(c.material.poisson_ratio) * c.material.shear_modulus() * c.area(),
+                bending(c),
+            )
+        } else {
+            let inner = &strand.layers()[..index];
+            let sum = |f: &dyn Fn(&WireSpec) -> f64| {
+                inner
+                    .iter()
+                    .fold(f(c), |s, l| s + l.wires() as f64 * f(&l.spec.wire))
+            };
+            (
+                layer.radius - w.radius(),
+                o.core_shear * sum(&shear),
+                sum(&bending),
+            )
+        };
         Self {
             wires: layer.wires() as f64,
             alpha,
             helix_radius: r,
-            contact_radius: o.contact_radius.unwrap_or(c.radius()),
+            contact_radius: o.contact_radius.unwrap_or(bond),
             k,
             curvature: k * alpha.sin(),
             torsion: k * alpha.cos(),
@@ -275,11 +328,8 @@ impl Rods {
                 o.wire_bending * e * w.inertia(),
                 o.wire_bending * e * w.inertia(),
             ],
-            core_shear: o.core_shear
-                * ks(c.material.poisson_ratio)
-                * c.material.shear_modulus()
-                * c.area(),
-            core_bending: c.material.youngs_modulus * c.inertia(),
+            core_shear,
+            core_bending,
         }
     }
 

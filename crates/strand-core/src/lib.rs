@@ -1,8 +1,8 @@
-//! Constitutive core of `strand`: strand geometry and materials ([`geometry`], SPEC 1), the
-//! frictionless bending stiffness of a helical wire ([`wire_bending`]), the bonded (all-stick)
-//! stiffness of the wires as rods bonded to the core ([`bonded`]), the stick/slip section laws
-//! of the equivalent beam ([`section`], SPEC 2), and the strand calculator's summary
-//! ([`summary`]).
+//! Constitutive core of `strand`: a wire's material and section ([`wire`]), strand geometry of
+//! any number of layers ([`geometry`], SPEC 1), the frictionless bending stiffness of a helical
+//! wire ([`wire_bending`]), the bonded (all-stick) stiffness of a layer's wires as rods bonded
+//! to what lies beneath ([`bonded`]), the stick/slip section laws of the equivalent beam
+//! ([`section`], SPEC 2), and the strand calculator's summary ([`summary`]).
 //!
 //! Equation numbers "(n)" in the documentation are those of Guo, Wei, Tan, Zhao (2018),
 //! "Analysis of the cored stranded wire rope on the nonlinear bending dynamic
@@ -14,17 +14,18 @@ pub mod error;
 pub mod geometry;
 pub mod section;
 pub mod summary;
+pub mod wire;
 pub mod wire_bending;
 
 pub use bonded::{BondedOptions, BondedStiffness, StickStiffness, bonded_stiffness};
 pub use error::InputError;
 pub use geometry::{
-    DEFAULT_FRICTION, HelixLayer, LayDirection, LayerSpec, Material, Strand, StrandSpec,
-    TraditionalBeam, WireSpec,
+    CLOSED_LAYER_TOLERANCE, Contact, DEFAULT_FRICTION, HelixLayer, Interface, LayDirection,
+    LayerSpec, Material, Strand, StrandSpec, TraditionalBeam, WireSpec,
 };
 pub use section::{
-    LawKind, PlanarMoment, PlanarResponse, SectionLaw, SectionOptions, SectionResponse, SlipLimit,
-    Station, WireReport, WireState,
+    LawKind, PlanarMoment, PlanarResponse, PressureSystem, SectionLaw, SectionOptions,
+    SectionResponse, SlipLimit, SlipPressure, Station, WireReport, WireState,
 };
-pub use summary::{SectionPoint, StrandSummary};
+pub use summary::{LayerSummary, SectionPoint, StrandSummary};
 pub use wire_bending::BaseStiffness;

@@ -4,12 +4,13 @@
 use serde::Serialize;
 
 use crate::bonded::StickStiffness;
-use crate::geometry::Strand;
-use crate::section::{LawKind, SectionLaw, SectionOptions, SlipLimit, WireReport};
+use crate::geometry::{Contact, Strand};
+use crate::section::{LawKind, SectionLaw, SectionOptions, SlipLimit, SlipPressure, WireReport};
 use crate::wire_bending::BaseStiffness;
 
-/// Derived quantities of a strand (keys as in SPEC 6 `strand section --json`). Layer
-/// quantities are `None` for a plain wire.
+/// Derived quantities of a strand (keys as in SPEC 6 `strand section --json`). The top-level
+/// layer quantities are the first layer's (`None` for a plain wire); `layers` has every
+/// layer's.
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct StrandSummary {
     /// Helix radius R_w (m).
@@ -58,6 +59,49 @@ pub struct StrandSummary {
     /// Traditional beam axial stiffness EA (N).
     #[serde(rename = "EA_traditional")]
     pub ea_traditional: f64,
+    /// Which contact pressure sets the friction limits (`section.slip_pressure`).
+    pub slip_pressure: SlipPressure,
+    /// Every layer, from the core outward.
+    pub layers: Vec<LayerSummary>,
+}
+
+/// One layer's derived quantities and its shares of the section's stiffnesses.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct LayerSummary {
+    /// Layer number, 1-based from the core outward.
+    pub layer: usize,
+    /// Number of wires.
+    pub wires: usize,
+    /// Wire diameter (m).
+    pub diameter: f64,
+    /// Helix radius R_w (m).
+    #[serde(rename = "R_w")]
+    pub r_w: f64,
+    /// How far the closed layer stands off the layer beneath (m).
+    pub lift: f64,
+    /// Pitch P (m).
+    pub pitch: f64,
+    /// Lay angle alpha (deg).
+    pub lay_angle_deg: f64,
+    /// Lay direction.
+    pub lay_direction: String,
+    /// Angle between this layer's wires and those beneath (deg).
+    pub crossing_angle_deg: f64,
+    /// Contact with the layer beneath: `line` or `crossing`.
+    pub contact: Contact,
+    /// Gap between neighbouring wires (m).
+    pub wire_gap: Option<f64>,
+    /// The layer's share of K_min, m K_w (N m^2).
+    #[serde(rename = "K_min")]
+    pub k_min: f64,
+    /// The stick factor of the layer's interface (-).
+    pub stick_factor: f64,
+    /// The layer's stick stiffness, (m/2) f eta E_w A_w R_w^2 (N m^2).
+    #[serde(rename = "K_stick")]
+    pub k_stick: f64,
+    /// Friction limit per unit strand strain of a wire at pi/2 from the neutral axis, the
+    /// extreme fibre, on the stretched side (N).
+    pub slip_force_per_strain: f64,
 }
 
 /// Response of a section to a given strain and curvature.
@@ -94,8 +138,9 @@ impl StrandSummary {
     /// Summarises `strand` with the section `options`.
     pub fn new(strand: &Strand, options: &SectionOptions) -> Self {
         let base = options.base_stiffness;
-        let l = strand.layer();
+        let l = strand.layers().first();
         let t = strand.traditional();
+        let law = SectionLaw::with_options(strand, LawKind::Continuous, options);
         StrandSummary {
             r_w: l.map(|l| l.radius),
             pitch: l.map(|l| l.pitch),
@@ -108,13 +153,37 @@ impl StrandSummary {
             k_min: strand.min_bending_stiffness(base),
             k_min_paper: strand.min_bending_stiffness(BaseStiffness::Paper),
             stick_stiffness: options.stick_stiffness,
-            stick_factor: l.map(|_| options.stick_stiffness.factor(strand)),
+            stick_factor: l.map(|_| options.stick_stiffness.factor(strand, 0)),
             slip_limit: options.slip_limit,
-            k_max: SectionLaw::with_options(strand, LawKind::Continuous, options)
-                .stick_bending_stiffness(),
+            k_max: law.stick_bending_stiffness(),
             k_max_plane_section: strand.max_bending_stiffness(base),
             ei_traditional: t.bending_stiffness,
             ea_traditional: t.axial_stiffness,
+            slip_pressure: options.slip_pressure,
+            layers: strand
+                .layers()
+                .iter()
+                .zip(strand.interfaces())
+                .enumerate()
+                .map(|(j, (h, i))| LayerSummary {
+                    layer: j + 1,
+                    wires: h.wires(),
+                    diameter: h.spec.wire.diameter,
+                    r_w: h.radius,
+                    lift: h.lift,
+                    pitch: h.pitch,
+                    lay_angle_deg: h.lay_angle().to_degrees(),
+                    lay_direction: h.direction().name().to_string(),
+                    crossing_angle_deg: i.crossing_angle.to_degrees(),
+                    contact: i.contact,
+                    wire_gap: Some(h.wire_gap()).filter(|g| g.is_finite()),
+                    k_min: strand.layer_min_bending(h, base),
+                    stick_factor: options.stick_stiffness.factor(strand, j),
+                    k_stick: law.layer_stick_stiffness(j),
+                    slip_force_per_strain: law.friction_limit(j, 1.0, 0.5 * std::f64::consts::PI)
+                        [0],
+                })
+                .collect(),
         }
     }
 }

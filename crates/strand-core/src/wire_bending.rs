@@ -50,7 +50,7 @@
 //! derivation above is what each form is checked against (`tests/wire_bending.rs`), and the
 //! fine model's frictionless virtual bending test measures it (`cargo xtask stiffness`).
 
-use crate::geometry::WireSpec;
+use crate::wire::WireSpec;
 
 /// Which frictionless bending stiffness of a helical wire the section laws use as the base of
 /// K_min (module docs).

@@ -66,7 +66,7 @@ fn random_strand() -> impl Strategy<Value = Strand> {
 /// sin^2(alpha)) (thin rods with the helix's torsion; independent of the rod model's
 /// Fourier solution).
 fn costello(s: &Strand) -> f64 {
-    let l = s.layer().unwrap();
+    let l = s.layers().first().unwrap();
     let w = &l.spec.wire;
     let (a, nu) = (l.lay_angle(), w.material.poisson_ratio);
     s.core().material.youngs_modulus * s.core().inertia()
@@ -95,7 +95,7 @@ proptest! {
     fn bond_on_the_axes_of_rigid_sections_gives_the_plane_section_stiffness(
         s in random_strand(),
     ) {
-        let r = s.layer().unwrap().radius;
+        let r = s.layers().first().unwrap().radius;
         let on_axes = BondedOptions {
             contact_radius: Some(r),
             core_shear: 1e12,
@@ -132,7 +132,7 @@ proptest! {
         ] {
             prop_assert!(bonded_stiffness(&s, &o).unwrap().bonded > base.bonded);
         }
-        let k = base.plane_section_stick / s.layer().unwrap().radius.powi(2);
+        let k = base.plane_section_stick / s.layers().first().unwrap().radius.powi(2);
         let springs = BondedOptions {
             tangential_stiffness: Some(k),
             normal_stiffness: Some(k),
@@ -190,13 +190,13 @@ proptest! {
     /// friction limit is unchanged: far beyond the last slip both forms give the same moment.
     #[test]
     fn the_stick_factor_scales_the_wires_springs_only(s in random_strand()) {
-        let l = *s.layer().unwrap();
+        let l = *s.layers().first().unwrap();
         let w = &l.spec.wire;
         let plane = 0.5 * l.wires() as f64 * l.eta * w.material.youngs_modulus * w.area()
             * l.radius * l.radius;
         let rod = bonded_stiffness(&s, &BondedOptions::default()).unwrap();
-        prop_assert_eq!(StickStiffness::Bonded.factor(&s), rod.stick_factor());
-        prop_assert_eq!(StickStiffness::PlaneSection.factor(&s), 1.0);
+        prop_assert_eq!(StickStiffness::Bonded.factor(&s, 0), rod.stick_factor());
+        prop_assert_eq!(StickStiffness::PlaneSection.factor(&s, 0), 1.0);
         let eps = 1e-3;
         let mean_moment = |law: &SectionLaw, kappa: f64| {
             let n = 64;
@@ -212,7 +212,7 @@ proptest! {
             let options = SectionOptions { stick_stiffness: stick, ..Default::default() };
             let law = SectionLaw::with_options(&s, LawKind::Continuous, &options);
             let k_min = law.base_bending_stiffness();
-            let want = k_min + stick.factor(&s) * plane;
+            let want = k_min + stick.factor(&s, 0) * plane;
             prop_assert!((law.stick_bending_stiffness() - want).abs() <= 1e-12 * want);
             // Below the first slip (the smallest limit is mu sin(alpha) eta E A cos^2 eps
             // times the lever angle near the neutral axis; 1e-12 1/m is far below it).

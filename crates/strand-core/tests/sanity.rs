@@ -10,7 +10,7 @@ use strand_core::{BaseStiffness, LawKind, SectionLaw, SectionOptions, Strand};
 #[test]
 fn table1_closed_forms() {
     let s = Strand::new(common::table1()).unwrap();
-    let l = s.layer().unwrap();
+    let l = s.layers().first().unwrap();
     let a = 20f64.to_radians();
     let (e, rho) = (2.0e8, 7801.0);
     let (dc, dw) = (3.0e-3, 2.0e-3);
@@ -63,7 +63,7 @@ fn table1_closed_forms() {
 #[test]
 fn table1_printed_values() {
     let s = Strand::new(common::table1()).unwrap();
-    let l = s.layer().unwrap();
+    let l = s.layers().first().unwrap();
     let p = |v: f64, printed: f64, digits: i32| {
         let rel = (v - printed).abs() / printed.abs();
         assert!(

@@ -61,7 +61,7 @@ fn strand() -> impl Strategy<Value = Strand> {
 
 /// Typical first-slip curvature scale eps mu sin(alpha) / R_w of a strand (1/m).
 fn curvature_scale(s: &Strand, eps: f64) -> f64 {
-    let l = s.layer().unwrap();
+    let l = s.layers().first().unwrap();
     (eps.abs().max(1e-6) * s.friction().max(0.05) * l.lay_angle().sin() / l.radius).max(1e-6)
 }
 
@@ -182,7 +182,7 @@ proptest! {
         if !near_axis {
             let want = s.min_bending_stiffness(BaseStiffness::default()) + sum;
             prop_assert!((secant - want).abs() <= 1e-9 * want);
-            if s.layer().unwrap().wires() >= 3 {
+            if s.layers().first().unwrap().wires() >= 3 {
                 prop_assert!((secant - law.stick_bending_stiffness()).abs() <= 1e-9 * want);
             }
         }
@@ -201,7 +201,7 @@ proptest! {
         let law = SectionLaw::with_options(&s, LawKind::Paper, &options);
         let st = law.station(x);
         let c2 = match limit {
-            SlipLimit::Paper => s.layer().unwrap().lay_angle().cos().powi(2),
+            SlipLimit::Paper => s.layers().first().unwrap().lay_angle().cos().powi(2),
             SlipLimit::Papailiou => 1.0,
         };
         for w in law.planar_wires(&st, eps, sense, &[]) {
@@ -441,7 +441,7 @@ proptest! {
         // Smallest eigenvalue.
         let lmin = 0.5 * tr - (0.25 * (t[0][0] - t[1][1]).powi(2) + t[0][1] * t[1][0]).sqrt();
         prop_assert!(det > 0.0 && lmin >= kmin * (1.0 - 1e-12), "{t:?} K_min {kmin}");
-        if s.layer().unwrap().wires() >= 3 {
+        if s.layers().first().unwrap().wires() >= 3 {
             let want = law.stick_bending_stiffness();
             prop_assert!((t[0][0] - want).abs() <= 1e-12 * want && (t[1][1] - want).abs() <= 1e-12 * want);
             prop_assert!(t[0][1].abs() <= 1e-12 * want);
@@ -601,7 +601,7 @@ fn critical_curvature_limits() {
                 let w = law.planar_wires(&law.station(0.0), eps, -1.0, &[])[0];
                 // The default stick stiffness is the bonded strand's, f K_stick: a wire slips
                 // at 1/f times the plane section's critical curvature.
-                let f = StickStiffness::default().factor(&s);
+                let f = StickStiffness::default().factor(&s, 0);
                 let err = (f * w.critical_curvature.unwrap() - want).abs() / want;
                 assert!(
                     err <= prev.max(1e-9),
@@ -648,7 +648,7 @@ fn critical_curvature_limits() {
 #[test]
 fn deep_slip_moment_is_the_friction_limits_by_hand() {
     let s = Strand::new(common::table1()).unwrap();
-    let l = s.layer().unwrap();
+    let l = s.layers().first().unwrap();
     let (a, rw, m) = (l.lay_angle(), l.radius, l.wires() as f64);
     let w = &l.spec.wire;
     let eps = 2e-3;
@@ -1101,7 +1101,7 @@ fn out_of_plane_stiffness_after_slip_is_not_negative() {
 fn stored_bending_direction_near_zero_curvature() {
     let s = Strand::new(common::table1()).unwrap();
     let eps = 1e-3;
-    let pitch = s.layer().unwrap().pitch;
+    let pitch = s.layers().first().unwrap().pitch;
     for limit in SlipLimit::ALL {
         let options = SectionOptions {
             slip_limit: limit,

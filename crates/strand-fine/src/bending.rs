@@ -203,7 +203,7 @@ impl BendingTest {
     /// friction and, unless set, the reference tension of the wires under `tension`,
     /// E_w A_w cos^2(alpha) T / EA_eq (N).
     pub fn contact_options(&self, strand: &Strand) -> ContactOptions {
-        let reference = strand.layer().map(|layer| {
+        let reference = strand.layers().first().map(|layer| {
             let w = &layer.spec.wire;
             let eps = self.tension / strand.axial_stiffness();
             w.material.youngs_modulus * w.area() * layer.lay_angle().cos().powi(2) * eps
@@ -221,7 +221,7 @@ impl BendingTest {
     /// radius. `None` when a factor the rod model does not carry differs from 1 (the axial
     /// factors, the core's bending and torsion).
     pub fn rod_options(&self, strand: &Strand) -> Option<BondedOptions> {
-        let layer = strand.layer()?;
+        let layer = strand.layers().first()?;
         let (c, w) = (&self.core_springs, &self.wire_springs);
         if [c.axial, c.bending, c.torsion, w.axial] != [1.0; 4] {
             return None;
@@ -260,7 +260,7 @@ impl BendingTest {
         strand: &Strand,
         progress: &mut dyn FnMut(&BendingPoint),
     ) -> Result<(Vec<BendingPoint>, FineModel, ModelState), BendingError> {
-        let layer = strand.layer().ok_or(BendingError::NoLayer)?;
+        let layer = strand.layers().first().ok_or(BendingError::NoLayer)?;
         let pitch = layer.pitch;
         let length = pitch * self.pitches as f64;
         let spec = StrandSpec {
@@ -275,7 +275,7 @@ impl BendingTest {
                 e.within("strand")
             ))
         })?;
-        let layer = strand.layer().ok_or(BendingError::NoLayer)?;
+        let layer = strand.layers().first().ok_or(BendingError::NoLayer)?;
         let n = self
             .pitches
             .checked_mul(self.segments_per_pitch)

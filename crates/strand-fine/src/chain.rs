@@ -226,7 +226,7 @@ pub(crate) mod tests {
     #[test]
     fn helix_segments_follow_the_helix() {
         let s = table1();
-        let layer = s.layer().unwrap();
+        let layer = s.layers().first().unwrap();
         let c = Chain::helix(layer, 2, s.length(), 77);
         assert_eq!(c.len(), 77);
         // Chord length sum approaches the helix length from below (chords of an arc).

@@ -221,7 +221,9 @@ pub struct FineModel {
 }
 
 impl FineModel {
-    /// Model of `strand` with supports `start` at x = 0 and `end` at x = L on every wire.
+    /// Model of `strand` with supports `start` at x = 0 and `end` at x = L on every wire. The
+    /// fine model runs the core and the first helical layer (a `1+m` strand): scenes refuse a
+    /// second layer (`strand.layers[1]`) before they reach it.
     pub fn from_strand(
         strand: &Strand,
         disc: Discretisation,
@@ -234,7 +236,7 @@ impl FineModel {
             strand.length(),
             disc.core_segments,
         ))];
-        if let Some(layer) = strand.layer() {
+        if let Some(layer) = strand.layers().first() {
             for i in 0..layer.wires() {
                 wires.push(Wire::new(Chain::helix(
                     layer,
@@ -289,7 +291,9 @@ impl FineModel {
     /// Adds contact points between every helical wire of `strand` (wires 1..) and the core
     /// (wire 0), with the stiffnesses of `options` (see [`ContactOptions`]).
     pub fn add_contacts(&mut self, strand: &Strand, options: &ContactOptions) {
-        let Some(layer) = strand.layer() else { return };
+        let Some(layer) = strand.layers().first() else {
+            return;
+        };
         let wire = &layer.spec.wire;
         let (normal_per_length, shear_per_length) = options.stiffness_per_length(layer);
         let friction = options.friction.unwrap_or(strand.friction());

@@ -142,7 +142,7 @@ fn bonded(
     contact: ContactOptions,
     core: SpringScale,
 ) -> BendingTest {
-    let layer = s.layer().unwrap();
+    let layer = s.layers().first().unwrap();
     let w = &layer.spec.wire;
     let wire_ea = w.material.youngs_modulus * w.area() * layer.lay_angle().cos().powi(2);
     let tension = 2.2e-4 * s.axial_stiffness();
@@ -210,7 +210,7 @@ fn bonded_strand_follows_the_rod_model() {
 #[test]
 fn bonded_strand_reaches_k_max_without_the_ignored_compliances() {
     let s = table1();
-    let r_w = s.layer().unwrap().radius;
+    let r_w = s.layers().first().unwrap().radius;
     let test = bonded(
         &s,
         48,
@@ -272,7 +272,7 @@ fn friction_softens_with_curvature_and_tension_delays_it() {
 #[test]
 fn slipping_contacts_converge_without_halving() {
     let s = table1();
-    let layer = s.layer().unwrap();
+    let layer = s.layers().first().unwrap();
     let w = &layer.spec.wire;
     let wire_ea = w.material.youngs_modulus * w.area() * layer.lay_angle().cos().powi(2);
     let test = BendingTest {
@@ -304,7 +304,7 @@ fn slipping_contacts_converge_without_halving() {
 #[ignore = "diagnostic: MU, T, K, SPP, STICK_LOSS, PEN from the environment"]
 fn wire_forces() {
     let s = table1();
-    let layer = *s.layer().unwrap();
+    let layer = *s.layers().first().unwrap();
     let test = BendingTest {
         pitches: 6,
         segments_per_pitch: env("SPP", 12.0) as usize,

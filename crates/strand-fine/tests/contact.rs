@@ -86,7 +86,7 @@ fn unloaded_strand_with_contacts_stays_at_rest() {
 fn press_and_pull(pull_ratio: f64) -> (f64, ContactState, f64, f64, f64) {
     let mu = 0.3;
     let s = strand(0.03, mu);
-    let layer = *s.layer().unwrap();
+    let layer = *s.layers().first().unwrap();
     let core = Chain::straight(
         WireSection::from_spec(s.core()),
         Vector3::new(-0.01, 0.0, 0.0),

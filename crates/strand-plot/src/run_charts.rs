@@ -96,7 +96,7 @@ pub fn plot_run(
     let mut series = along("bending_stiffness", &bent);
     let band = stiffness_band(&series, k_max);
     let ends = (0.0, strand.length());
-    if strand.layer().is_some() {
+    if !strand.layers().is_empty() {
         for (k, what, color) in [(k_min, "K_min", 6), (k_max, "K_max", 3)] {
             series.push(Series::new(
                 format!("{what} = {} N m^2", short(k)),
@@ -144,34 +144,54 @@ pub fn plot_run(
         if rows.is_empty() {
             continue;
         }
-        let wires = rows
-            .rows()
-            .filter_map(|r| r.number("wire"))
-            .fold(1.0, f64::max);
-        let series = states
-            .iter()
-            .map(|(state, color)| {
-                let points = rows
-                    .rows()
-                    .filter(|r| r.get("state") == Some(state))
-                    .filter_map(|r| Some((r.number("s")?, r.number("wire")?)))
-                    .collect();
-                Series::new(*state, points, Mark::Dots, *color)
-            })
-            .filter(|s| !s.points.is_empty())
-            .collect();
-        charts.push((
-            format!("stick-slip-{}", s.model),
-            Chart {
-                title: format!("{name}: wire states along the strand, {}", label(s)),
-                x_label: "s (m)".into(),
-                y_label: "wire".into(),
-                series,
-                // Room above the last wire for the legend.
-                y_range: Some((0.4, wires + 1.4)),
-                ..Chart::default()
-            },
-        ));
+        // One map per layer of a strand of several (the beams' `layer` column; the fine
+        // model's contacts and a one-layer strand's wires are one map).
+        let layer_of = |r: &crate::table::TextRow<'_>| r.number("layer").unwrap_or(1.0);
+        let layers = rows.rows().map(|r| layer_of(&r)).fold(1.0, f64::max) as usize;
+        for layer in 1..=layers {
+            let in_layer = |r: &crate::table::TextRow<'_>| layer_of(r) == layer as f64;
+            let wires = rows
+                .rows()
+                .filter(in_layer)
+                .filter_map(|r| r.number("wire"))
+                .fold(1.0, f64::max);
+            let series = states
+                .iter()
+                .map(|(state, color)| {
+                    let points = rows
+                        .rows()
+                        .filter(in_layer)
+                        .filter(|r| r.get("state") == Some(state))
+                        .filter_map(|r| Some((r.number("s")?, r.number("wire")?)))
+                        .collect();
+                    Series::new(*state, points, Mark::Dots, *color)
+                })
+                .filter(|s| !s.points.is_empty())
+                .collect();
+            let (key, of_layer) = if layers > 1 {
+                (
+                    format!("stick-slip-{}-layer-{layer}", s.model),
+                    format!(", layer {layer}"),
+                )
+            } else {
+                (format!("stick-slip-{}", s.model), String::new())
+            };
+            charts.push((
+                key,
+                Chart {
+                    title: format!(
+                        "{name}: wire states along the strand, {}{of_layer}",
+                        label(s)
+                    ),
+                    x_label: "s (m)".into(),
+                    y_label: "wire".into(),
+                    series,
+                    // Room above the last wire for the legend.
+                    y_range: Some((0.4, wires + 1.4)),
+                    ..Chart::default()
+                },
+            ));
+        }
     }
 
     if matches!(scene.analysis, Analysis::Dynamic(_)) {

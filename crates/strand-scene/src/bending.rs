@@ -70,7 +70,7 @@ const STATIONS: usize = 48;
 /// The law's moment (N m) at strain `eps` and curvature `kappa` (1/m), bent from straight,
 /// averaged over `STATIONS` stations of one pitch; and the smallest critical curvature there.
 fn law_moment(law: &SectionLaw, strand: &Strand, eps: f64, kappa: f64) -> (f64, Option<f64>) {
-    let pitch = strand.layer().map_or(strand.length(), |l| l.pitch);
+    let pitch = strand.layers().first().map_or(strand.length(), |l| l.pitch);
     let slip = vec![0.0; law.state_len()];
     let mut trial = slip.clone();
     let (mut sum, mut first) = (0.0, None::<f64>);
@@ -94,9 +94,15 @@ pub fn run_bending(
     progress: &mut dyn FnMut(&BendingPoint, f64),
 ) -> Result<BendingSummary, RunError> {
     let strand = &scene.strand;
-    if strand.layer().is_none() {
+    if strand.layers().is_empty() {
         return Err(invalid(
             "strand.layers: the bending test needs a helical layer",
+        ));
+    }
+    if strand.layers().len() > 1 {
+        return Err(invalid(
+            "strand.layers[1]: the bending test's fine model runs a strand of one helical layer \
+             (a 1+m strand)",
         ));
     }
     if !(opts.tension.is_finite() && opts.tension > 0.0) {
@@ -111,7 +117,7 @@ pub fn run_bending(
             opts.pitches, opts.segments_per_pitch
         )));
     }
-    let layer = strand.layer().expect("checked above");
+    let layer = strand.layers().first().expect("checked above");
     let wires = 1 + layer.wires();
     let need = match opts.pitches.checked_mul(opts.segments_per_pitch) {
         Some(n) => fine_memory(n, wires),

@@ -61,10 +61,11 @@ pub struct StrandFile {
     pub length: f64,
     /// The straight core wire.
     pub core: WireFile,
-    /// Helical layers (zero or one).
+    /// Helical layers from the core outward (none: a plain wire).
     #[serde(default)]
     pub layers: Vec<LayerFile>,
-    /// Wire-core friction coefficient mu (default 0.3).
+    /// Friction coefficient mu between each layer and the layer (or core) beneath (default
+    /// 0.3).
     #[serde(default)]
     pub friction: Option<f64>,
 }
@@ -87,6 +88,13 @@ pub struct SectionFile {
     /// (22b) as printed).
     #[serde(default)]
     pub slip_limit: Option<String>,
+    /// The contact pressure that sets each layer's friction limit: `accumulated` (default;
+    /// the wire's own tension plus what the layers outside press down, with their exact wire
+    /// counts and radii), `sc5` (the same with close-packed layers) or `own_layer` (the wire's
+    /// own tension only, the capstan law of every layer). A strand of one layer has the same
+    /// law under every choice.
+    #[serde(default)]
+    pub slip_pressure: Option<String>,
 }
 
 /// A core wire.
@@ -114,7 +122,8 @@ pub struct LayerFile {
     /// Lay angle alpha (deg), in (0, 90).
     #[serde(default)]
     pub lay_angle_deg: Option<f64>,
-    /// Pitch P = 2 pi R_w / tan(alpha) (m), instead of the lay angle.
+    /// Pitch P = 2 pi R_w / tan(alpha) (m), instead of the lay angle; R_w is the stacked
+    /// helix radius (the diameter beneath plus this layer's wire diameter, halved).
     #[serde(default)]
     pub pitch: Option<f64>,
     /// Phase of wire 1 at x = 0 (deg), default 0.

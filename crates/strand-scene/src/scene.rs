@@ -11,7 +11,8 @@ use strand_ancf::beam::{
 };
 use strand_core::{
     BaseStiffness, DEFAULT_FRICTION, InputError, LawKind, LayDirection, LayerSpec, Material,
-    SectionOptions, SlipLimit, StickStiffness, Strand, StrandSpec, WireSpec,
+    SectionLaw, SectionOptions, SlipLimit, SlipPressure, StickStiffness, Strand, StrandSpec,
+    WireSpec,
 };
 
 use nalgebra::Vector3;
@@ -273,6 +274,9 @@ impl Scene {
                 ));
             }
         };
+        if let Some(kind) = law {
+            SectionLaw::check(&strand, kind).map_err(|e| SceneError::from(e.within("strand")))?;
+        }
 
         let mut supports: Vec<Support> = Vec::new();
         for (i, s) in file.supports.iter().enumerate() {
@@ -681,6 +685,18 @@ fn section(file: Option<&SectionFile>) -> Result<SectionOptions, SceneError> {
             )
         })?;
     }
+    if let Some(name) = file.slip_pressure.as_deref() {
+        options.slip_pressure = SlipPressure::from_name(name).ok_or_else(|| {
+            let names: Vec<&str> = SlipPressure::ALL.iter().map(|b| b.name()).collect();
+            SceneError::new(
+                "section.slip_pressure",
+                format!(
+                    "unknown slip pressure `{name}`: expected {}",
+                    names.join(", ")
+                ),
+            )
+        })?;
+    }
     if let Some(name) = file.slip_limit.as_deref() {
         options.slip_limit = SlipLimit::from_name(name).ok_or_else(|| {
             let names: Vec<&str> = SlipLimit::ALL.iter().map(|b| b.name()).collect();
@@ -708,8 +724,12 @@ fn strand(file: &SceneFile) -> Result<Strand, SceneError> {
         material: material(&s.core),
     };
     let mut layers = Vec::new();
+    // The diameter of what each layer lies on (the core, then the layers beneath), for a
+    // pitch given instead of a lay angle.
+    let mut beneath = core.diameter;
     for (k, l) in s.layers.iter().enumerate() {
-        layers.push(layer(k, l, &core)?);
+        layers.push(layer(k, l, beneath)?);
+        beneath += 2.0 * l.diameter;
     }
     let spec = StrandSpec {
         length: s.length,
@@ -720,7 +740,10 @@ fn strand(file: &SceneFile) -> Result<Strand, SceneError> {
     Strand::new(spec).map_err(|e| e.within("strand").into())
 }
 
-fn layer(k: usize, l: &LayerFile, core: &WireSpec) -> Result<LayerSpec, SceneError> {
+/// Layer `k` of the scene, lying on a cylinder of diameter `beneath` (m): a pitch converts to
+/// the lay angle on the stacked helix radius (beneath + d_w) / 2; a closed layer's lift (a few
+/// microns, module `strand_core::geometry::stack`) changes its pitch by as little.
+fn layer(k: usize, l: &LayerFile, beneath: f64) -> Result<LayerSpec, SceneError> {
     let p = |f: &str| format!("strand.layers[{k}].{f}");
     let wires = count(&p("wires"), l.wires, 1, 1000)?;
     let lay_angle = match (l.lay_angle_deg, l.pitch) {
@@ -739,7 +762,7 @@ fn layer(k: usize, l: &LayerFile, core: &WireSpec) -> Result<LayerSpec, SceneErr
         (Some(a), None) => finite(&p("lay_angle_deg"), a)?.to_radians(),
         (None, Some(pitch)) => {
             let pitch = positive(&p("pitch"), pitch)?;
-            let rw = 0.5 * (core.diameter + l.diameter);
+            let rw = 0.5 * (beneath + l.diameter);
             (2.0 * std::f64::consts::PI * rw / pitch).atan()
         }
     };
@@ -953,13 +976,14 @@ fn beam(
     let l = strand.length() / elements as f64;
     // Bending points per element: the scene's Gauss rule, the pitch rule of the stick/slip
     // laws (the traditional beam has no wires: 4 points), as `strand_ancf::beam` builds them.
-    let per_element = match (integration_points, strand.layer()) {
+    // The shortest of the layers' pitches sets the rule: it resolves every layer's phases.
+    let per_element = match (integration_points, strand.shortest_pitch()) {
         (Some(n), _) => n as f64,
-        (None, Some(layer)) if !traditional => pitch_rule_points(l, layer.pitch, element),
+        (None, Some(pitch)) if !traditional => pitch_rule_points(l, pitch, element),
         _ => 4.0,
     };
     if integration_points.is_none() && per_element > MAX_BENDING_POINTS as f64 {
-        let pitch = strand.layer().map_or(f64::NAN, |l| l.pitch);
+        let pitch = strand.shortest_pitch().unwrap_or(f64::NAN);
         return Err(SceneError::new(
             field,
             format!(
@@ -975,7 +999,7 @@ fn beam(
     let wires = if traditional {
         0
     } else {
-        strand.layer().map_or(0, |l| l.wires())
+        strand.helical_wires()
     };
     let points = elements as f64 * per_element;
     let need = beam_memory(elements, points, wires);
@@ -1008,9 +1032,16 @@ fn beam(
 }
 
 fn fine(m: &FineModelFile, strand: &Strand) -> Result<FineModel, SceneError> {
+    if strand.layers().len() > 1 {
+        return Err(SceneError::new(
+            "strand.layers[1]",
+            "the fine model runs a strand of one helical layer (a 1+m strand); run a strand of \
+             several layers with the equivalent and traditional models",
+        ));
+    }
     let p = "models.fine.segments_per_wire";
     let segments_per_wire = count(p, m.segments_per_wire, 2, i64::MAX)?;
-    let wires = 1 + strand.layer().map_or(0, |l| l.wires());
+    let wires = 1 + strand.helical_wires();
     let need = fine_memory(segments_per_wire, wires);
     if need > MEMORY_LIMIT {
         return Err(SceneError::new(

@@ -111,7 +111,7 @@ fn test(
     pitches: usize,
     curvatures: &[f64],
 ) -> BendingTest {
-    let layer = strand.layer().expect("a helical layer");
+    let layer = strand.layers().first().expect("a helical layer");
     let w = &layer.spec.wire;
     let wire_ea = w.material.youngs_modulus * w.area() * layer.lay_angle().cos().powi(2);
     BendingTest {

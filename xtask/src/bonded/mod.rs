@@ -311,7 +311,7 @@ fn bending_test(
     spp: usize,
     pitches: usize,
 ) -> BendingTest {
-    let layer = strand.layer().expect("a helical layer");
+    let layer = strand.layers().first().expect("a helical layer");
     let w = &layer.spec.wire;
     let wire_ea = w.material.youngs_modulus * w.area() * layer.lay_angle().cos().powi(2);
     let tension = load.strain * v.strain_factor * strand.axial_stiffness();
@@ -441,7 +441,7 @@ pub fn run(args: &BondedArgs) -> anyhow::Result<Report> {
         if args.quick && si > 0 {
             break;
         }
-        let layer = *strand.layer().expect("a helical layer");
+        let layer = *strand.layers().first().expect("a helical layer");
         let list = if si == 0 {
             variants(args.quick, layer.radius)
         } else {

@@ -485,7 +485,7 @@ pub fn figures(runs: &[&SceneRun], figs: &mut Figures) -> anyhow::Result<Vec<Fin
     let mut series = Vec::new();
     let mut spans = Vec::new();
     let mut root_slips_tip_sticks = true;
-    let m = strand.layer().map_or(0, |l| l.wires()) as f64;
+    let m = strand.layers().first().map_or(0, |l| l.wires()) as f64;
     for (i, g) in gs.iter().enumerate() {
         let w = load_wires(&runs[i].dir.join("equivalent"))?;
         let along = slipping_along(&w);

@@ -264,7 +264,8 @@ fn plan(scene: &Scene, quick: bool, fine_sizes: &[usize]) -> Vec<Config> {
 pub fn fine_sizes(scene: &Scene, per_pitch: f64, levels: usize) -> Vec<usize> {
     let pitches = scene
         .strand
-        .layer()
+        .layers()
+        .first()
         .map_or(1.0, |l| scene.strand.length() / l.pitch);
     let first = (per_pitch * pitches).round().max(2.0) as usize;
     (0..levels).map(|k| first << k).collect()

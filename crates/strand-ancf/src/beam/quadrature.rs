@@ -81,16 +81,17 @@ pub(super) fn element_rule(
     let setup = |source| BeamError::Kinematics { element: e, source };
     let axial = element_quadrature(l, AXIAL_POINTS).map_err(setup)?;
     let x0 = e as f64 * l;
-    let n = match (spec.bending_points, law.strand().layer()) {
+    // The shortest of the layers' pitches sets the rule: it resolves every layer's phases.
+    let n = match (spec.bending_points, law.strand().shortest_pitch()) {
         (Some(n), _) => n,
-        (None, Some(layer)) if law.sliders() > 0 => {
-            let points = pitch_rule_points(l, layer.pitch, spec.element);
+        (None, Some(pitch)) if law.sliders() > 0 => {
+            let points = pitch_rule_points(l, pitch, spec.element);
             if points > MAX_BENDING_POINTS as f64 {
                 return Err(BeamError::Setup(format!(
                     "elements of {l:.4e} m span {:.4e} wire pitches: the pitch rule asks for \
                      {points:.4e} bending points per element, above the cap of \
                      {MAX_BENDING_POINTS}; use at least {} elements",
-                    l / layer.pitch,
+                    l / pitch,
                     min_elements(spec.elements, points)
                 )));
             }

@@ -1,6 +1,6 @@
 //! Choices a scene makes about the section law beyond its kind (the scene's `section` object).
 
-use super::SlipLimit;
+use super::{SlipLimit, SlipPressure};
 use crate::bonded::StickStiffness;
 use crate::wire_bending::BaseStiffness;
 
@@ -18,6 +18,10 @@ pub struct SectionOptions {
     /// The slipping wires' friction limit (`section.slip_limit`; default Papailiou's, the
     /// capstan gain from the nearest neutral-axis crossing on the axial projection cos(alpha)).
     pub slip_limit: SlipLimit,
+    /// The contact pressure that sets each layer's friction limit (`section.slip_pressure`;
+    /// default the accumulated pressure of the layers outside, module `pressure`). A strand
+    /// of one layer has the same law under every choice.
+    pub slip_pressure: SlipPressure,
 }
 
 impl SectionOptions {
@@ -29,6 +33,7 @@ impl SectionOptions {
             base_stiffness: BaseStiffness::Paper,
             stick_stiffness: StickStiffness::PlaneSection,
             slip_limit: SlipLimit::Paper,
+            slip_pressure: SlipPressure::OwnLayer,
         }
     }
 }

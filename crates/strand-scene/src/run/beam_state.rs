@@ -178,8 +178,11 @@ pub(crate) fn write(beam: &Beam, rows: &[Row], slip: &[f64], dir: &Path) -> Resu
     let mut c = Csv::create(&p, &CENTERLINE_COLUMNS).map_err(e)?;
     let pw = dir.join("wires.csv");
     let ew = |e: std::io::Error| format!("writing {}: {e}", pw.display());
-    let mut wires =
-        Csv::create(&pw, &["s", "wire", "phase", "critical_curvature", "state"]).map_err(ew)?;
+    let mut wires = Csv::create(
+        &pw,
+        &["s", "wire", "phase", "critical_curvature", "state", "layer"],
+    )
+    .map_err(ew)?;
     let planar = beam.spec().element == ElementKind::Planar;
     for r in rows {
         let [x, y, z] = r.position;
@@ -211,6 +214,8 @@ pub(crate) fn write(beam: &Beam, rows: &[Row], slip: &[f64], dir: &Path) -> Resu
                     // Empty for a wire without lever: it never slips.
                     wr.critical_curvature.map_or(String::new(), number),
                     state.to_string(),
+                    // Appended so that readers of the first five columns keep working.
+                    wr.layer.to_string(),
                 ])
                 .map_err(ew)?;
         }

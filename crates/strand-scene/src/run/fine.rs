@@ -100,7 +100,7 @@ pub(crate) fn run_fine(
     let mut bound = None;
     if m.bind_free_end {
         for (end, e) in [(End::Start, fine::End::Start), (End::End, fine::End::End)] {
-            if support(scene, end) == fine::Support::Free && strand.layer().is_some() {
+            if support(scene, end) == fine::Support::Free && !strand.layers().is_empty() {
                 model.bind_end(e);
                 bound = Some(end);
             }
@@ -126,7 +126,7 @@ pub(crate) fn run_fine(
         ));
     }
     let mut warnings = Vec::new();
-    if let Some(layer) = strand.layer() {
+    if let Some(layer) = strand.layers().first() {
         built.push(format!(
             "{} wire-to-core contacts (penalty for a penetration of {:.1e} wire diameters, \
              Coulomb friction mu = {} with stick springs)",
@@ -948,7 +948,7 @@ mod tests {
             assert!((rot * Vector3::x() - dir).norm() < 1e-14, "{d:?}");
             assert!((rot * Vector3::z() - reference).norm() < 1e-14, "{d:?}");
             // The fine model's wire 1 at x = 0, relative to the core, in scene axes.
-            let layer = scene.strand.layer().unwrap();
+            let layer = scene.strand.layers().first().unwrap();
             let chain = strand_fine::Chain::helix(layer, 0, scene.strand.length(), 40);
             let start = chain.segments[0].start_offset();
             let wire = rot * chain.rest[0].point(&start);
