@@ -5,11 +5,13 @@
 
 mod bending;
 pub mod format;
+mod law_bending;
 pub mod output;
 mod run;
 mod scene;
 
 pub use bending::{BendingOptions, BendingSummary, run_bending};
+pub use law_bending::{LawBendingOptions, LawBendingSummary, run_law_bending};
 pub use run::{
     BeamModelKind, Failure, RunError, RunOptions, RunSummary, build_beam, dynamic_options,
     run_scene,
