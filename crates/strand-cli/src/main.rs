@@ -115,6 +115,19 @@ enum Command {
         /// Output folder.
         #[arg(long, default_value = "out/bending")]
         out: PathBuf,
+        /// `fine` (default): the fine model's virtual bending test against the section law;
+        /// `equivalent`: the section law's moment-curvature curve with one load reversal (a
+        /// hysteresis loop), for a strand of any number of layers, drawn as
+        /// `law-bending.png`/`.svg`.
+        #[arg(long, default_value = "fine")]
+        model: String,
+        /// `--model equivalent`: the loop's largest curvature (1/m); default three times the
+        /// largest critical curvature of the wires.
+        #[arg(long)]
+        amplitude: Option<f64>,
+        /// `--model equivalent`: curvature steps from 0 to the amplitude.
+        #[arg(long, default_value_t = 100)]
+        steps: usize,
     },
 }
 
@@ -159,10 +172,31 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Bend {
             scene,
             tension,
+            out,
+            model,
+            amplitude,
+            steps,
+            ..
+        } if model == "equivalent" => law_bend(
+            &scene,
+            strand_scene::LawBendingOptions {
+                tension,
+                amplitude,
+                steps,
+                out,
+            },
+        ),
+        Command::Bend { model, .. } if model != "fine" => {
+            anyhow::bail!("--model must be `fine` or `equivalent`, got `{model}`")
+        }
+        Command::Bend {
+            scene,
+            tension,
             curvatures,
             pitches,
             segments_per_pitch,
             out,
+            ..
         } => bend(
             &scene,
             strand_scene::BendingOptions {
@@ -174,6 +208,70 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             },
         ),
     }
+}
+
+/// `strand bend --model equivalent`: the section law's curve with one load reversal.
+fn law_bend(path: &std::path::Path, opts: strand_scene::LawBendingOptions) -> anyhow::Result<()> {
+    let scene = Scene::load(path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let s = strand_scene::run_law_bending(&scene, &opts)?;
+    say!(
+        "section law `{}` of `{}` ({} layer(s)): T = {} N (strain {:.3e}), K_min = {:.4e}, K_max = \
+         {:.4e} N m^2",
+        s.law,
+        s.scene,
+        s.layers,
+        s.tension,
+        s.strain,
+        s.k_min,
+        s.k_max
+    );
+    say!(
+        "loop 0 -> {a:.4e} -> {m:.4e} -> {a:.4e} 1/m: slip work {:.4e} J/m, loop area {:.4e} J/m",
+        s.dissipated,
+        s.loop_area,
+        a = s.amplitude,
+        m = -s.amplitude
+    );
+    let (x, y): (Vec<f64>, Vec<f64>) = s.points.iter().map(|p| (p[0], p[1])).unzip();
+    let n = x.len();
+    let first = n / 5 + 1;
+    let chart = strand_plot::Chart {
+        title: format!(
+            "{}: section law `{}` at T = {} N",
+            s.scene, s.law, s.tension
+        ),
+        x_label: "curvature (1/m)".into(),
+        y_label: "moment (N m)".into(),
+        series: vec![
+            strand_plot::Series::xy(
+                "loading",
+                &x[..first],
+                &y[..first],
+                strand_plot::Mark::Line,
+                0,
+            ),
+            strand_plot::Series::xy(
+                "reversals",
+                &x[first - 1..],
+                &y[first - 1..],
+                strand_plot::Mark::Line,
+                1,
+            ),
+        ],
+        ..Default::default()
+    };
+    strand_plot::register_fonts();
+    let files = strand_plot::save(&chart, &opts.out, "law-bending")?;
+    say!(
+        "wrote {} and {}",
+        opts.out.join("law-bending.csv").display(),
+        files
+            .iter()
+            .map(|f| f.display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    Ok(())
 }
 
 fn bend(path: &std::path::Path, opts: strand_scene::BendingOptions) -> anyhow::Result<()> {

@@ -1,0 +1,168 @@
+//! The section law's moment-curvature curve at a given tension, with load reversals: what
+//! `strand bend --model equivalent` draws, for a strand of any number of layers.
+//!
+//! The strand is held at the strain T / EA_eq and bent along the curvature path 0 ->
+//! kappa_max -> -kappa_max -> kappa_max (a loading curve and one hysteresis loop). The
+//! moment is averaged over evenly spaced stations of the longest pitch (each station with its
+//! own slip state for the hysteretic law), as a bending test over whole pitches measures it.
+
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+use strand_core::SectionLaw;
+
+use crate::output::Csv;
+use crate::run::record::{RunError, io_err};
+use crate::scene::Scene;
+
+/// Phase stations over the longest pitch.
+const STATIONS: usize = 48;
+
+/// Options of the law's bending curve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LawBendingOptions {
+    /// Axial tension T (N), held.
+    pub tension: f64,
+    /// Largest curvature of the loop (1/m); `None`: three times the largest critical curvature
+    /// of the wires at the first station (every wire slips at the ends of the loop).
+    pub amplitude: Option<f64>,
+    /// Curvature steps from 0 to the amplitude (the loop takes four times as many).
+    pub steps: usize,
+    /// Output folder.
+    pub out: PathBuf,
+}
+
+/// What the law's bending curve wrote in `law-summary.json`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LawBendingSummary {
+    /// Scene name.
+    pub scene: String,
+    /// Section law.
+    pub law: String,
+    /// Number of helical layers.
+    pub layers: usize,
+    /// Tension T (N).
+    pub tension: f64,
+    /// Strain T / EA_eq (-).
+    pub strain: f64,
+    /// All-slip stiffness K_min (N m^2).
+    pub k_min: f64,
+    /// All-stick stiffness K_max (N m^2).
+    pub k_max: f64,
+    /// The loop's largest curvature (1/m).
+    pub amplitude: f64,
+    /// Slip work over the loop, averaged over the stations (J/m).
+    pub dissipated: f64,
+    /// The loop's area, the trapezoid sum of M d kappa around it (J/m): equal to the
+    /// dissipated work for the hysteretic law (its stored energy returns), zero for an
+    /// elastic law.
+    pub loop_area: f64,
+    /// (curvature 1/m, moment N m) along the path.
+    pub points: Vec<[f64; 2]>,
+}
+
+/// Runs the law's bending curve of `scene`'s strand and writes `DIR/law-bending.csv`
+/// (curvature, moment, tangent) and `DIR/law-summary.json`.
+pub fn run_law_bending(
+    scene: &Scene,
+    opts: &LawBendingOptions,
+) -> Result<LawBendingSummary, RunError> {
+    let strand = &scene.strand;
+    let invalid = |message: String| RunError::Setup {
+        model: "equivalent".into(),
+        message,
+    };
+    SectionLaw::check(strand, scene.law).map_err(|e| invalid(e.within("strand").to_string()))?;
+    if !(opts.tension.is_finite() && opts.tension >= 0.0) {
+        return Err(invalid(format!(
+            "--tension must be zero or positive and finite, got {}",
+            opts.tension
+        )));
+    }
+    if opts.steps < 2 {
+        return Err(invalid(format!(
+            "--steps must be at least 2, got {}",
+            opts.steps
+        )));
+    }
+    let law = SectionLaw::with_options(strand, scene.law, &scene.section);
+    let eps = opts.tension / law.axial_stiffness();
+    let pitch = strand
+        .layers()
+        .iter()
+        .map(|l| l.pitch)
+        .reduce(f64::max)
+        .unwrap_or(strand.length());
+    let stations: Vec<_> = (0..STATIONS)
+        .map(|i| law.station(pitch * (i as f64 + 0.5) / STATIONS as f64))
+        .collect();
+    let amplitude = match opts.amplitude {
+        Some(a) if a.is_finite() && a > 0.0 => a,
+        Some(a) => return Err(invalid(format!("--amplitude must be positive, got {a}"))),
+        None => {
+            let largest = law
+                .planar_wires(&stations[0], eps, -1.0, &[])
+                .iter()
+                .filter_map(|w| w.critical_curvature)
+                .fold(0.0, f64::max);
+            if largest > 0.0 { 3.0 * largest } else { 1.0 }
+        }
+    };
+    // 0 -> a, a -> -a, -a -> a.
+    let n = opts.steps;
+    let path: Vec<f64> = (1..=n)
+        .map(|i| amplitude * i as f64 / n as f64)
+        .chain((1..=2 * n).map(|i| amplitude * (1.0 - i as f64 / n as f64)))
+        .chain((1..=2 * n).map(|i| amplitude * (-1.0 + i as f64 / n as f64)))
+        .collect();
+    let mut slips: Vec<Vec<f64>> = vec![vec![0.0; law.state_len()]; STATIONS];
+    let mut trial = vec![0.0; law.state_len()];
+    let mut rows = Vec::with_capacity(path.len() + 1);
+    rows.push([0.0, 0.0, law.planar_stick_stiffness(&stations[0])]);
+    let (mut dissipated, mut loop_area) = (0.0, 0.0);
+    for (i, &k) in path.iter().enumerate() {
+        let (mut m, mut t, mut w) = (0.0, 0.0, 0.0);
+        for (st, slip) in stations.iter().zip(&mut slips) {
+            let r = law.planar(st, eps, k, slip, &mut trial);
+            slip.copy_from_slice(&trial);
+            m += r.moment;
+            t += r.moment_curvature;
+            w += r.slip_work;
+        }
+        let (m, t) = (m / STATIONS as f64, t / STATIONS as f64);
+        if i >= n {
+            let prev = rows[rows.len() - 1];
+            loop_area += 0.5 * (m + prev[1]) * (k - prev[0]);
+            dissipated += w / STATIONS as f64;
+        }
+        rows.push([k, m, t]);
+    }
+    std::fs::create_dir_all(&opts.out).map_err(io_err(&opts.out))?;
+    let csv_path = opts.out.join("law-bending.csv");
+    let mut csv =
+        Csv::create(&csv_path, &["curvature", "moment", "tangent"]).map_err(io_err(&csv_path))?;
+    for r in &rows {
+        csv.row(r).map_err(io_err(&csv_path))?;
+    }
+    csv.finish().map_err(io_err(&csv_path))?;
+    let summary = LawBendingSummary {
+        scene: scene.name.clone(),
+        law: scene.law.to_string(),
+        layers: strand.layers().len(),
+        tension: opts.tension,
+        strain: eps,
+        k_min: law.base_bending_stiffness(),
+        k_max: law.stick_bending_stiffness(),
+        amplitude,
+        dissipated,
+        loop_area,
+        points: rows.iter().map(|r| [r[0], r[1]]).collect(),
+    };
+    write_json(&opts.out.join("law-summary.json"), &summary)?;
+    Ok(summary)
+}
+
+fn write_json(path: &Path, value: &impl Serialize) -> Result<(), RunError> {
+    let text = serde_json::to_string_pretty(value).expect("summary serializes");
+    std::fs::write(path, text + "\n").map_err(io_err(path))
+}
