@@ -31,6 +31,7 @@ use crate::corotation::Corotation;
 use crate::initial::InitialState;
 use crate::measure::{Lengths, dot};
 use crate::moving_support::Drive;
+use crate::output_times::OutputTimes;
 use crate::statics::{add_free, gather_free};
 
 pub use crate::stability::stable_step;
@@ -515,7 +516,7 @@ fn verlet(
         slip: &slip,
     });
     let mut supplied = 0.0f64;
-    let mut next_out = opts.output_interval;
+    let mut output = OutputTimes::new(opts.output_interval, h);
     for step in 1..=n_steps {
         let t = step as f64 * h;
         drive.kick(beam, t - h, &mut vf, &mass, &mut mv);
@@ -560,7 +561,7 @@ fn verlet(
                 stable,
             });
         }
-        if t >= next_out - 1e-9 * h || step == n_steps {
+        if output.due(t, step == n_steps) {
             scatter_velocity(beam, &vf, &drive, &mut v);
             observer(Frame {
                 t,
@@ -570,9 +571,6 @@ fn verlet(
                 points: &pts,
                 slip: &slip,
             });
-            while next_out <= t + 1e-9 * h {
-                next_out += opts.output_interval;
-            }
         }
     }
     scatter_velocity(beam, &vf, &drive, &mut v);
@@ -1202,7 +1200,7 @@ fn generalized_alpha(
         slip: &st.slip,
     });
     let mut newton_iterations = 0;
-    let mut next_out = opts.output_interval;
+    let mut output = OutputTimes::new(opts.output_interval, h);
     for step in 1..=n_steps {
         let t = step as f64 * h;
         drive.kick(beam, t - h, &mut st.vf, &m, &mut w.mv);
@@ -1230,7 +1228,7 @@ fn generalized_alpha(
         drive.end_step(beam, &st.q, &st.vf, &w.force);
         en = ledger.energies(beam, t, &st.q, &st.vf, &drive, &mut w.mv, out.elastic);
         w.energy = w.energy.max(en.largest());
-        if t >= next_out - 1e-9 * h || step == n_steps {
+        if output.due(t, step == n_steps) {
             scatter_velocity(beam, &st.vf, &drive, &mut v);
             observer(Frame {
                 t,
@@ -1240,9 +1238,6 @@ fn generalized_alpha(
                 points: &pts,
                 slip: &st.slip,
             });
-            while next_out <= t + 1e-9 * h {
-                next_out += opts.output_interval;
-            }
         }
     }
     scatter_velocity(beam, &st.vf, &drive, &mut v);

@@ -312,3 +312,36 @@ fn newton_leaves_the_balance_to_the_integrator() {
     assert!(coarse < 1e-4, "{coarse:.3e}");
     assert!(order >= 1.5, "{order:.2}");
 }
+
+/// Frames and steps of a 1 s generalized-alpha run of the Table 1 pendulum (4 elements, 1e-3
+/// s steps) with frames every `interval` (s). A run that has not ended after a minute (the
+/// run itself takes milliseconds) is reported as a hang instead of holding the suite up.
+fn frames_and_steps(interval: f64) -> (usize, usize) {
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let beam = pendulum(LawKind::Constant, 4);
+        let scheme = Scheme::GeneralizedAlpha {
+            step: 1e-3,
+            spectral_radius: 0.9,
+        };
+        let opts = DynamicOptions::new(1.0, scheme, interval);
+        let mut frames = 0;
+        let s = run_dynamic(&beam, &opts, &mut |_| frames += 1).unwrap();
+        let _ = tx.send((frames, s.steps));
+    });
+    rx.recv_timeout(std::time::Duration::from_secs(60))
+        .unwrap_or_else(|_| panic!("output interval {interval:e} s: no end after a minute"))
+}
+
+/// An output interval far below the step (1e-13 s against 1e-3 s) writes a frame every step,
+/// as an interval of one step does: the same frames (the initial one and one a step, 1001)
+/// and steps (1000). The former output loop advanced the next output time one interval at a
+/// time, 1e10 additions a step, and did not end.
+#[test]
+fn a_tiny_output_interval_writes_a_frame_every_step() {
+    let every_step = frames_and_steps(1e-3);
+    assert_eq!(every_step, (1001, 1000));
+    assert_eq!(frames_and_steps(1e-13), every_step);
+    // An interval of 2.5 steps: output times at 2.5, 5, 7.5, ... ms, 400 of them in 1 s.
+    assert_eq!(frames_and_steps(2.5e-3), (401, 1000));
+}
