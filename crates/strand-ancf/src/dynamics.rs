@@ -33,6 +33,7 @@ use crate::measure::{Lengths, dot};
 use crate::moving_support::Drive;
 use crate::output_times::OutputTimes;
 use crate::statics::{add_free, gather_free};
+use strand_core::round_off::{BalanceFloor, Travel};
 
 pub use crate::stability::stable_step;
 
@@ -221,6 +222,10 @@ pub struct DynamicSummary {
     pub balance_error: f64,
     /// Largest kinetic energy over the run (J): a scale for the balance error.
     pub max_kinetic: f64,
+    /// The balance error that round-off alone can make over the run (J): the work the
+    /// round-off of the internal forces can do over the distance the strand travelled
+    /// ([`BalanceFloor`]). A balance error below it says nothing about the integrator.
+    pub balance_floor: f64,
     /// Energies at the end.
     pub last: Energies,
     /// Final coordinates.
@@ -325,6 +330,12 @@ struct Ledger {
     e0: f64,
     balance_error: f64,
     max_kinetic: f64,
+    /// The round-off of the internal forces ([`Ledger::floor`]).
+    floor: BalanceFloor,
+    /// The distance the strand has travelled at its root mean square speed.
+    path: Travel,
+    /// Mass of the strand (kg).
+    mass: f64,
 }
 
 impl Ledger {
@@ -342,7 +353,20 @@ impl Ledger {
             e0,
             balance_error: 0.0,
             max_kinetic: 0.0,
+            floor: BalanceFloor::new(
+                beam.law().axial_stiffness(),
+                beam.law().stick_bending_stiffness(),
+                beam.length(),
+                beam.spec().elements,
+            ),
+            path: Travel::default(),
+            mass: beam.spec().mass_per_length * beam.length(),
         }
+    }
+
+    /// The balance error round-off alone can make so far (J).
+    fn floor(&self) -> f64 {
+        self.floor.work(self.path.distance)
     }
 
     fn gravity(&self, beam: &Beam, q: &[f64]) -> f64 {
@@ -383,6 +407,11 @@ impl Ledger {
         };
         self.balance_error = self.balance_error.max((e.total() - self.e0).abs());
         self.max_kinetic = self.max_kinetic.max(kinetic);
+        if t == 0.0 {
+            self.path = Travel::start(t, kinetic, self.mass);
+        } else {
+            self.path.advance(t, kinetic, self.mass);
+        }
         e
     }
 }
@@ -552,7 +581,9 @@ fn verlet(
         // work and the law's non-potential work (each in absolute value, a bound).
         supplied = supplied
             .max(ledger.e0.abs() + en.gravity.abs() + en.supports.abs() + en.non_potential.abs());
-        if ledger.balance_error > supplied {
+        // Above the round-off floor too: a strand at rest is moved by round-off alone, and its
+        // balance error is then of the size of all it was given.
+        if ledger.balance_error > supplied + ledger.floor() {
             return Err(DynamicError::Diverged {
                 t,
                 error: ledger.balance_error,
@@ -583,6 +614,7 @@ fn verlet(
         cut_steps: 0,
         balance_error: ledger.balance_error,
         max_kinetic: ledger.max_kinetic,
+        balance_floor: ledger.floor(),
         last: en,
         q,
         v,
@@ -1250,6 +1282,7 @@ fn generalized_alpha(
         cut_steps: w.cuts,
         balance_error: ledger.balance_error,
         max_kinetic: ledger.max_kinetic,
+        balance_floor: ledger.floor(),
         last: en,
         q: st.q,
         v,
