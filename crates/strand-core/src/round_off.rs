@@ -28,6 +28,8 @@ pub const OPERATIONS: f64 = 16.0;
 pub struct BalanceFloor {
     /// The round-off of the internal forces summed over the nodes (N).
     force: f64,
+    /// Nodes.
+    nodes: f64,
 }
 
 impl BalanceFloor {
@@ -41,7 +43,13 @@ impl BalanceFloor {
             * (axial.abs() * n + bending.abs() * n.powi(3) / (length * length));
         BalanceFloor {
             force: (n + 1.0) * node,
+            nodes: n + 1.0,
         }
+    }
+
+    /// The round-off of the internal force at one node (N).
+    pub fn node_force(&self) -> f64 {
+        self.force / (self.nodes)
     }
 
     /// The work (J) the round-off forces can do over a path of `path` (m) at the strand's
