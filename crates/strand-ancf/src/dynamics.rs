@@ -31,7 +31,7 @@ use crate::initial::InitialState;
 use crate::moving_support::Drive;
 use crate::output_times::OutputTimes;
 use crate::statics::{add_free, gather_free};
-use strand_core::round_off::{BalanceFloor, Travel};
+use strand_core::round_off::{BalanceFloor, OPERATIONS, Travel};
 
 mod alpha;
 
@@ -337,6 +337,11 @@ struct Ledger {
     path: Travel,
     /// Mass of the strand (kg).
     mass: f64,
+    /// Largest elastic energy so far (J).
+    max_elastic: f64,
+    /// Largest sum of the gravity potential's terms in absolute value, `|Q_g| . |q|` (J):
+    /// the potential is their sum less the initial one, and keeps their round-off.
+    gravity_terms: f64,
 }
 
 impl Ledger {
@@ -362,12 +367,17 @@ impl Ledger {
             ),
             path: Travel::default(),
             mass: beam.spec().mass_per_length * beam.length(),
+            max_elastic: 0.0,
+            gravity_terms: 0.0,
         }
     }
 
-    /// The balance error round-off alone can make so far (J).
+    /// The balance error round-off alone can make so far (J): the work of the round-off
+    /// forces over the path, and the round-off of evaluating the elastic energy.
     fn floor(&self) -> f64 {
         self.floor.work(self.path.distance)
+            + self.floor.evaluation(self.max_elastic)
+            + OPERATIONS * f64::EPSILON * self.gravity_terms
     }
 
     fn gravity(&self, beam: &Beam, q: &[f64]) -> f64 {
@@ -408,6 +418,13 @@ impl Ledger {
         };
         self.balance_error = self.balance_error.max((e.total() - self.e0).abs());
         self.max_kinetic = self.max_kinetic.max(kinetic);
+        self.max_elastic = self.max_elastic.max(elastic.abs());
+        let terms: f64 = q
+            .iter()
+            .zip(beam.gravity_force())
+            .map(|(a, b)| (a * b).abs())
+            .sum();
+        self.gravity_terms = self.gravity_terms.max(terms);
         if t == 0.0 {
             self.path = Travel::start(t, kinetic, self.mass);
         } else {

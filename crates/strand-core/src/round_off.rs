@@ -30,6 +30,11 @@ pub struct BalanceFloor {
     force: f64,
     /// Nodes.
     nodes: f64,
+    /// Axial stiffness times length (J) and the round-off of a strain (`n eps`).
+    axial: (f64, f64),
+    /// Bending stiffness times length (J m^2) and the round-off of a curvature
+    /// (`n^2 eps / L`, 1/m).
+    bending: (f64, f64),
 }
 
 impl BalanceFloor {
@@ -44,12 +49,26 @@ impl BalanceFloor {
         BalanceFloor {
             force: (n + 1.0) * node,
             nodes: n + 1.0,
+            axial: (axial.abs() * length, n * f64::EPSILON),
+            bending: (bending.abs() * length, n * n * f64::EPSILON / length),
         }
     }
 
     /// The round-off of the internal force at one node (N).
     pub fn node_force(&self) -> f64 {
         self.force / (self.nodes)
+    }
+
+    /// The round-off of an evaluation of the elastic energy `elastic` (J): the stored energy
+    /// `1/2 EA L eps_s^2` of a strain computed with the round-off `d = n eps` is off by
+    /// `EA L |eps_s| d + 1/2 EA L d^2`, and `EA L |eps_s|` is `sqrt(2 EA L E)` for a uniform
+    /// strain storing `E`; the same for the curvature, with EI. [`OPERATIONS`] times that:
+    /// the energies a balance compares at two instants differ by that much with no motion to
+    /// speak of (one Verlet step of 1e-10 s of a strand at rest: 2e-23 J).
+    pub fn evaluation(&self, elastic: f64) -> f64 {
+        let e = elastic.abs();
+        let term = |(k, d): (f64, f64)| (2.0 * k * e).sqrt() * d + 0.5 * k * d * d;
+        OPERATIONS * (term(self.axial) + term(self.bending))
     }
 
     /// The work (J) the round-off forces can do over a path of `path` (m) at the strand's
@@ -118,6 +137,20 @@ mod tests {
         // Bending adds EI n^3 / L^2 to EA n: EI = EA L^2 / n^2 doubles the node's term.
         let b = BalanceFloor::new(5.2e4, 5.2e4 / 64.0, 1.0, 8);
         assert!((b.work(1.0) - 2.0 * want).abs() < 1e-12 * want);
+    }
+
+    #[test]
+    fn the_evaluation_floor_is_the_energy_of_a_round_off_strain() {
+        // No bending: 16 x 1/2 EA L (n eps)^2 with nothing stored, and the cross term
+        // sqrt(2 EA L E) n eps with E stored.
+        let f = BalanceFloor::new(5.2e4, 0.0, 1.0, 8);
+        let d = 8.0 * f64::EPSILON;
+        let rest = 16.0 * 0.5 * 5.2e4 * d * d;
+        assert!((f.evaluation(0.0) - rest).abs() < 1e-12 * rest);
+        let loaded = 16.0 * ((2.0 * 5.2e4 * 1e-3f64).sqrt() * d) + rest;
+        assert!((f.evaluation(1e-3) - loaded).abs() < 1e-12 * loaded);
+        // A stored energy of 1 mJ is known to about 3e-10 of itself.
+        assert!(f.evaluation(1e-3) < 1e-9 * 1e-3);
     }
 
     #[test]
