@@ -25,13 +25,15 @@
 //! the `continuous` and `paper` laws' slip energy as the friction limits turn with the bending
 //! direction (zero in planar motion).
 
-use crate::band::{BandMatrix, BandSolver};
-use crate::beam::{Beam, BeamError, ElementKind, Evaluation, PointState, Tangent};
-use crate::corotation::Corotation;
+use crate::band::BandSolver;
+use crate::beam::{Beam, BeamError, PointState};
 use crate::initial::InitialState;
-use crate::measure::{Lengths, dot};
 use crate::moving_support::Drive;
+use crate::output_times::OutputTimes;
 use crate::statics::{add_free, gather_free};
+use strand_core::round_off::{BalanceFloor, OPERATIONS, Travel};
+
+mod alpha;
 
 pub use crate::stability::stable_step;
 
@@ -92,7 +94,8 @@ pub struct DynamicOptions {
     /// below this fraction of the correction (1: always; 0: never).
     pub backtrack: f64,
     /// Generalized-alpha, `hysteretic` law: the share of their stick stiffness the iteration
-    /// matrix gives to slipping wires (see [`Tangent::Iteration`]). On the section-3 pendulum
+    /// matrix gives to slipping wires (see
+    /// [`Tangent::Iteration`](crate::beam::Tangent::Iteration)). On the section-3 pendulum
     /// at 1e-3 s steps (`pendulum_speed`, `PENDULUM_UNLOADING`), Newton iterations (matrices)
     /// 0: 5610 (895), 0.1: 4612 (671), 0.2: 4314 (551), 0.25: 4209 (602), 0.3: 4177 (647),
     /// 0.5: 4464 (1238). Before the two-step predictor, the coherent co-rotation and the
@@ -220,6 +223,10 @@ pub struct DynamicSummary {
     pub balance_error: f64,
     /// Largest kinetic energy over the run (J): a scale for the balance error.
     pub max_kinetic: f64,
+    /// The balance error that round-off alone can make over the run (J): the work the
+    /// round-off of the internal forces can do over the distance the strand travelled
+    /// ([`BalanceFloor`]). A balance error below it says nothing about the integrator.
+    pub balance_floor: f64,
     /// Energies at the end.
     pub last: Energies,
     /// Final coordinates.
@@ -324,6 +331,17 @@ struct Ledger {
     e0: f64,
     balance_error: f64,
     max_kinetic: f64,
+    /// The round-off of the internal forces ([`Ledger::floor`]).
+    floor: BalanceFloor,
+    /// The distance the strand has travelled at its root mean square speed.
+    path: Travel,
+    /// Mass of the strand (kg).
+    mass: f64,
+    /// Largest elastic energy so far (J).
+    max_elastic: f64,
+    /// Largest sum of the gravity potential's terms in absolute value, `|Q_g| . |q|` (J):
+    /// the potential is their sum less the initial one, and keeps their round-off.
+    gravity_terms: f64,
 }
 
 impl Ledger {
@@ -341,7 +359,25 @@ impl Ledger {
             e0,
             balance_error: 0.0,
             max_kinetic: 0.0,
+            floor: BalanceFloor::new(
+                beam.law().axial_stiffness(),
+                beam.law().stick_bending_stiffness(),
+                beam.length(),
+                beam.spec().elements,
+            ),
+            path: Travel::default(),
+            mass: beam.spec().mass_per_length * beam.length(),
+            max_elastic: 0.0,
+            gravity_terms: 0.0,
         }
+    }
+
+    /// The balance error round-off alone can make so far (J): the work of the round-off
+    /// forces over the path, and the round-off of evaluating the elastic energy.
+    fn floor(&self) -> f64 {
+        self.floor.work(self.path.distance)
+            + self.floor.evaluation(self.max_elastic)
+            + OPERATIONS * f64::EPSILON * self.gravity_terms
     }
 
     fn gravity(&self, beam: &Beam, q: &[f64]) -> f64 {
@@ -382,6 +418,18 @@ impl Ledger {
         };
         self.balance_error = self.balance_error.max((e.total() - self.e0).abs());
         self.max_kinetic = self.max_kinetic.max(kinetic);
+        self.max_elastic = self.max_elastic.max(elastic.abs());
+        let terms: f64 = q
+            .iter()
+            .zip(beam.gravity_force())
+            .map(|(a, b)| (a * b).abs())
+            .sum();
+        self.gravity_terms = self.gravity_terms.max(terms);
+        if t == 0.0 {
+            self.path = Travel::start(t, kinetic, self.mass);
+        } else {
+            self.path.advance(t, kinetic, self.mass);
+        }
         e
     }
 }
@@ -438,7 +486,7 @@ pub fn run_dynamic_from(
                         .into(),
                 ));
             }
-            generalized_alpha(beam, opts, init, step, spectral_radius, observer)
+            alpha::generalized_alpha(beam, opts, init, step, spectral_radius, 1.0, observer)
         }
     }
 }
@@ -515,7 +563,7 @@ fn verlet(
         slip: &slip,
     });
     let mut supplied = 0.0f64;
-    let mut next_out = opts.output_interval;
+    let mut output = OutputTimes::new(opts.output_interval, h);
     for step in 1..=n_steps {
         let t = step as f64 * h;
         drive.kick(beam, t - h, &mut vf, &mass, &mut mv);
@@ -551,7 +599,9 @@ fn verlet(
         // work and the law's non-potential work (each in absolute value, a bound).
         supplied = supplied
             .max(ledger.e0.abs() + en.gravity.abs() + en.supports.abs() + en.non_potential.abs());
-        if ledger.balance_error > supplied {
+        // Above the round-off floor too: a strand at rest is moved by round-off alone, and its
+        // balance error is then of the size of all it was given.
+        if ledger.balance_error > supplied + ledger.floor() {
             return Err(DynamicError::Diverged {
                 t,
                 error: ledger.balance_error,
@@ -560,7 +610,7 @@ fn verlet(
                 stable,
             });
         }
-        if t >= next_out - 1e-9 * h || step == n_steps {
+        if output.due(t, step == n_steps) {
             scatter_velocity(beam, &vf, &drive, &mut v);
             observer(Frame {
                 t,
@@ -570,9 +620,6 @@ fn verlet(
                 points: &pts,
                 slip: &slip,
             });
-            while next_out <= t + 1e-9 * h {
-                next_out += opts.output_interval;
-            }
         }
     }
     scatter_velocity(beam, &vf, &drive, &mut v);
@@ -585,679 +632,10 @@ fn verlet(
         cut_steps: 0,
         balance_error: ledger.balance_error,
         max_kinetic: ledger.max_kinetic,
+        balance_floor: ledger.floor(),
         last: en,
         q,
         v,
         slip,
-    })
-}
-
-/// State of the generalized-alpha integrator (free coordinates) and its workspace.
-struct AlphaState {
-    q: Vec<f64>,
-    vf: Vec<f64>,
-    /// True acceleration q''.
-    acc: Vec<f64>,
-    /// Algorithmic acceleration a.
-    alg: Vec<f64>,
-    /// True acceleration at the start of the last step, q''_{n-1} (the predictor of the
-    /// stick/slip laws).
-    acc_last: Vec<f64>,
-    slip: Vec<f64>,
-}
-
-impl AlphaState {
-    fn copy_from(&mut self, o: &AlphaState) {
-        self.q.copy_from_slice(&o.q);
-        self.vf.copy_from_slice(&o.vf);
-        self.acc.copy_from_slice(&o.acc);
-        self.alg.copy_from_slice(&o.alg);
-        self.acc_last.copy_from_slice(&o.acc_last);
-        self.slip.copy_from_slice(&o.slip);
-    }
-}
-
-struct AlphaWork {
-    force: Vec<f64>,
-    r: Vec<f64>,
-    dq: Vec<f64>,
-    mv: Vec<f64>,
-    trial: Vec<f64>,
-    g_free: Vec<f64>,
-    k: BandMatrix,
-    solver: BandSolver,
-    /// Step size the factorized iteration matrix belongs to (0: none).
-    factor_h: f64,
-    /// Iteration matrices built and factorized.
-    factorizations: usize,
-    /// Steps taken in halves because Newton failed at their size.
-    cuts: usize,
-    /// States to restore when a step is cut, one per level of cutting.
-    saved: Vec<AlphaState>,
-    /// Turns the kept iteration matrix with the strand.
-    rot: Corotation,
-    /// Whether the next step starts with a fresh iteration matrix.
-    stale: bool,
-    /// The predicted q'' of the step: the algorithmic acceleration takes up the Newton
-    /// corrections from there when the step is accepted.
-    acc_pred: Vec<f64>,
-    /// The last iteration's Newton correction (secant acceleration, in the step).
-    last_correction: Vec<f64>,
-    /// What the last iteration moved the coordinates by, negated.
-    last_move: Vec<f64>,
-    /// The secant direction u of the acceleration.
-    secant: Vec<f64>,
-    /// The algorithmic acceleration the step's tolerances are scaled with ([`Self::tolerance`]).
-    alg_scale: Vec<f64>,
-    /// Length measures of the free coordinates.
-    lengths: Lengths,
-    /// Mass of the strand (kg).
-    mass: f64,
-    /// Largest displacement from the reference configuration so far (m).
-    motion: f64,
-    /// Whether the Newton iterations evaluate the forces without the bending points' books
-    /// ([`Beam::internal_unbooked`]), which the accepted iterate's are then completed with:
-    /// for the planar element with a stick/slip law.
-    unbooked: bool,
-    /// Energy scale of the run so far (J): the largest ledger energy seen
-    /// ([`Energies::largest`]) or, if larger, the work of the strand's inertial force at a
-    /// step's prediction over the tolerance's motion scale (mass times the root mean square of
-    /// the acceleration times that length), which gives a strand released from rest a scale at
-    /// its first step.
-    energy: f64,
-}
-
-impl AlphaWork {
-    /// Evaluates the forces (and, if asked, the tangent into `k`) at `st` and the Newton
-    /// residual into `r`; `None` if the evaluation fails.
-    fn evaluate(
-        &mut self,
-        beam: &Beam,
-        st: &AlphaState,
-        pts_new: &mut [PointState],
-        tangent: Option<Tangent>,
-    ) -> Option<Evaluation> {
-        let k = tangent.map(|t| (&mut self.k, t));
-        let ev = if self.unbooked {
-            beam.internal_unbooked(&st.q, &st.slip, &mut self.force, k, pts_new)
-        } else {
-            beam.internal_with(
-                &st.q,
-                &st.slip,
-                &mut self.trial,
-                &mut self.force,
-                k,
-                Some(pts_new),
-            )
-        }
-        .ok()?;
-        beam.vector_mass().mul_vec(&st.acc, &mut self.mv);
-        residual(beam, &self.mv, &self.force, &self.g_free, &mut self.r);
-        Some(ev)
-    }
-
-    /// Newton tolerance of a step predicted at `st` (m): `increment` times the scale of the
-    /// motion, the strand length or, if smaller, the largest of the displacement from the
-    /// reference so far and of the distance the strand's current velocity and the algorithmic
-    /// acceleration `alg` (their root mean square over the mass) carry it over the run's
-    /// duration (a strand under a tiny load moves by tiny amounts, and an absolute tolerance
-    /// would accept its predictor). Corrections within the round-off of their coordinates are
-    /// converged too ([`Lengths::within_round_off`]).
-    fn tolerance(
-        &mut self,
-        beam: &Beam,
-        opts: &DynamicOptions,
-        st: &AlphaState,
-        alg: &[f64],
-    ) -> f64 {
-        let moved = self.lengths.distance(beam, &st.q, beam.reference());
-        self.motion = self.motion.max(moved);
-        let mut rms = |x: &[f64]| {
-            beam.vector_mass().mul_vec(x, &mut self.mv);
-            (dot(x, &self.mv) / self.mass).max(0.0).sqrt()
-        };
-        let t = opts.duration;
-        let acceleration = rms(alg);
-        let coming = rms(&st.vf) * t + 0.5 * acceleration * t * t;
-        let scale = self.motion.max(coming).min(beam.length());
-        self.energy = self.energy.max(self.mass * acceleration * scale);
-        opts.increment * scale
-    }
-}
-
-/// Generalized-alpha parameters for spectral radius `rho`: (alpha_m, alpha_f, gamma, beta).
-fn alpha_parameters(rho: f64) -> (f64, f64, f64, f64) {
-    let am = (2.0 * rho - 1.0) / (rho + 1.0);
-    let af = rho / (rho + 1.0);
-    let gamma = 0.5 + af - am;
-    (am, af, gamma, 0.25 * (gamma + 0.5) * (gamma + 0.5))
-}
-
-/// Result of one accepted (possibly subdivided) step: Newton iterations, slip work and the
-/// elastic energy at its end; `points` holds the bending-point states at its end.
-struct StepOutcome {
-    iterations: usize,
-    slip_work: f64,
-    non_potential: f64,
-    elastic: f64,
-}
-
-/// Advances `st` by `h`; on Newton failure restores it and takes two half steps, down to
-/// `depth` halvings.
-#[allow(clippy::too_many_arguments)]
-fn alpha_step(
-    beam: &Beam,
-    opts: &DynamicOptions,
-    rho: f64,
-    t0: f64,
-    h: f64,
-    depth: usize,
-    st: &mut AlphaState,
-    w: &mut AlphaWork,
-    pts: &mut [PointState],
-    pts_new: &mut [PointState],
-) -> Result<StepOutcome, usize> {
-    let (am, af, gamma, beta) = alpha_parameters(rho);
-    let beta_p = (1.0 - am) / (h * h * beta * (1.0 - af));
-    let gamma_p = gamma / (h * beta);
-    let nf = beam.dofs();
-    let level = w.saved.len() - depth - 1;
-    w.saved[level].copy_from(st);
-    let linear = beam.law().is_linear();
-    // Predictor: constant acceleration, q''_{n+1} = q''_n, for a linear section law; for the
-    // stick/slip laws the mean of the last two steps' accelerations, (q''_n + q''_{n-1}) / 2.
-    // On the section-3 pendulum at 1e-3 s steps the constant acceleration leaves the constant
-    // law's first correction about ten times smaller than zero acceleration does, so the
-    // co-rotated matrix of the first step serves the whole run (2012 iterations and 2
-    // matrices against 2287 and 51). With the stick/slip laws q''_n also carries the strand's
-    // fast modes, which every wire that starts or stops slipping kicks and which, near the
-    // step's own frequency, change sign from step to step: extrapolated, they make the
-    // hysteretic law's Newton slower than zero acceleration does; the mean of two steps
-    // cancels them and keeps the slow motion (on a strand hanging still and chattering,
-    // `stick-slip-chatter` of `cargo xtask hard`, it mispredicts: 3.12 iterations a step
-    // against 2.54 with zero acceleration). On that pendulum (with the matrix and the acceleration
-    // below) Newton iterations (matrices) with zero acceleration, constant acceleration and
-    // the mean: continuous 5068 (421), 4643 (535), 4250 (474); hysteretic 4807 (612), 5263
-    // (1102), 4209 (602).
-    if linear {
-        w.acc_pred.copy_from_slice(&st.acc);
-    } else {
-        for i in 0..nf {
-            w.acc_pred[i] = 0.5 * (st.acc[i] + st.acc_last[i]);
-            // The algorithmic acceleration of a zero-acceleration prediction (below).
-            w.alg_scale[i] = (af * st.acc[i] - am * st.alg[i]) / (1.0 - am);
-        }
-        st.acc_last.copy_from_slice(&st.acc);
-    }
-    for i in 0..nf {
-        let pa = w.acc_pred[i];
-        let a_new = (af * st.acc[i] + (1.0 - af) * pa - am * st.alg[i]) / (1.0 - am);
-        w.dq[i] = h * st.vf[i] + h * h * ((0.5 - beta) * st.alg[i] + beta * a_new);
-        st.vf[i] += h * ((1.0 - gamma) * st.alg[i] + gamma * a_new);
-        st.alg[i] = a_new;
-        st.acc[i] = pa;
-    }
-    add_free(beam, &mut st.q, 1.0, &w.dq);
-    beam.move_supports(&mut st.q, t0 + h);
-    // The tolerances scale with the predicted algorithmic acceleration (`AlphaWork::tolerance`)
-    // and, for the stick/slip laws, with that of a zero-acceleration prediction, as before
-    // their predictor extrapolated: the two-step mean's larger acceleration raises the energy
-    // scale, which would loosen the ledger test below by about four times on the section-3
-    // pendulum (4.8e-9 to 2.0e-8 J per step at t = 0.3 s).
-    let tol = if linear {
-        w.tolerance(beam, opts, st, &st.alg)
-    } else {
-        let alg = std::mem::take(&mut w.alg_scale);
-        let tol = w.tolerance(beam, opts, st, &alg);
-        w.alg_scale = alg;
-        tol
-    };
-    // The energy of a rigid translation of the whole strand by `tol` in the metric of the
-    // inertia term (J): `tol` for the root mean square of a correction over the mass.
-    let energy_tol = beta_p * w.mass * tol * tol;
-    // What the step may leave in the energy ledger (J): its share, h / T, of `opts.ledger`
-    // times the energy scale (the acceptance test below).
-    let ledger_tol = opts.ledger * w.energy * h / opts.duration;
-    // Modified Newton: the factorized iteration matrix S = beta' M + K is kept across
-    // iterations and steps and rebuilt when the step size changes or a correction shrinks by
-    // less than `opts.refresh`; every force evaluation is exact, so the converged state is the
-    // same as with full Newton. With a linear law the kept matrix is the exact tangent, also
-    // turned node by node with the strand since it was built (`dq = R S^-1 R^T r`, module
-    // `corotation`), and rebuilt at a step's start when the last step's final contraction was
-    // slower than `opts.rebuild_rate`. With the stick/slip laws the matrix is the symmetric
-    // one of [`Tangent::Iteration`] (LDL^T; no slower to converge than the exact tangent on
-    // the section-3 pendulum), turned only while the nodes turn together
-    // ([`Corotation::turns_together`]): where the strand bends or chatters under the kept
-    // matrix (`long-run-100s` of `cargo xtask hard`, the soft Fig. 8 pendulum on 8 elements)
-    // turning every node by its own slope took 60 % more iterations and twice the matrices
-    // (2,100,007 and 475,770 against 1,313,426 and 222,357; one turn for the whole strand,
-    // that of its mean slope, 1,768,053 and 374,359), and turning only coherent turns
-    // 1,336,599 and 231,069 (all without the secant acceleration below). On the section-3
-    // pendulum the turned matrix saves the `continuous` law iterations and matrices (no turn,
-    // every node, coherent turns: 4727 (612), 4210 (380), 4489 (467), again without the
-    // acceleration) and the hysteretic law next to none (4320 (770), 4304 (695), 4292 (698)).
-    let tangent = if linear {
-        Tangent::FrozenMeans
-    } else {
-        let unloading = if beam.law().kind().has_state() {
-            opts.unloading
-        } else {
-            0.0
-        };
-        Tangent::Iteration { unloading }
-    };
-    let estimate = !beam.law().kind().has_state();
-    let mut iterations = 0;
-    let mut outcome = None;
-    let mut fresh = w.factor_h != h || w.stale;
-    w.stale = false;
-    let mut prev = f64::INFINITY;
-    let mut full_step = true;
-    let mut history = false;
-    let mut ev = w.evaluate(beam, st, pts_new, fresh.then_some(tangent));
-    iterations += 1;
-    while let Some(e) = ev {
-        if fresh {
-            w.k.add_scaled(beta_p, beam.mass());
-            w.factorizations += 1;
-            if !w.solver.factorize(&w.k) {
-                w.factor_h = 0.0;
-                break;
-            }
-            w.factor_h = h;
-            w.rot.reset(&st.q);
-        } else {
-            w.rot.update(&st.q);
-            if !linear && !w.rot.turns_together() {
-                w.rot.clear();
-            }
-        }
-        w.dq.copy_from_slice(&w.r);
-        w.rot.apply(&mut w.dq, true);
-        w.solver.solve(&mut w.dq);
-        w.rot.apply(&mut w.dq, false);
-        let dn = w.lengths.displacement(&w.dq);
-        if !dn.is_finite() || dn > beam.length() {
-            // Diverged: the step is retried in halves, with a fresh matrix.
-            w.factor_h = 0.0;
-            break;
-        }
-        // The Newton decrement r . dq (J): the drop of the step's incremental potential the
-        // correction promises (for a linear problem, twice its distance to the minimum), and
-        // the slope of that potential along -dq.
-        let decrement = dot(&w.r, &w.dq);
-        // The same correction in the inertia term's metric alone, beta' dq^T M dq (J).
-        let inertial = {
-            beam.vector_mass().mul_vec(&w.dq, &mut w.mv);
-            beta_p * dot(&w.dq, &w.mv)
-        };
-        // Converged when the trajectory and the energy ledger both are.
-        //
-        // The trajectory: this correction, or the error left after it, is below `tol`. With
-        // full steps contracting at the rate theta = dn / prev, the corrections still to come
-        // add up to about dn theta / (1 - theta) (the estimate of Hairer and Wanner, IV.8),
-        // which accepts a fast-converging iterate one iteration earlier. Not for a law with
-        // slip state: the committed trial state belongs to the forces before this correction,
-        // so the correction itself is the error (and its Newton path, which decides where the
-        // slip is committed, is left as it was). Or the correction's root mean square over the
-        // mass is below `tol` (`inertial <= energy_tol`): the displacement is a largest value,
-        // and a correction of one wire's slip state near the free end, carrying almost no
-        // mass, would hold it up.
-        //
-        // The ledger: the error left in the step's state, delta (the correction itself, or
-        // theta / (1 - theta) of it), changes the total energy by about that share of
-        // `ledger()` (below), and the later steps carry the changed total on: the integrator
-        // conserves the energy it is given, so each step's error stays in the balance. With
-        // gamma' ~ 1/h the same delta costs more energy the smaller the step, and the steps
-        // are more: a tolerance on the correction's size (or its Newton decrement against
-        // beta' m tol^2 ~ 1/h^2, the former test) leaves a balance error that grows as h
-        // shrinks (on issue 16's tilted pendulum in its plane, 9.9e-5 and 4.0e-4 of the
-        // largest kinetic energy at 0.25 and 0.125 ms, where the integrator's own is 2.0e-5
-        // and 3.0e-6). Bounding each step's by `ledger_tol` = `opts.ledger` E h / T bounds
-        // the run's, T / h steps of it, by `opts.ledger` E at every step size (a fixed share,
-        // not one falling with h as the integrator's error does: below the step where that
-        // error is `opts.ledger`, only the errors' partial cancelling keeps Newton's share
-        // small). A correction within the round-off of its coordinates is accepted whatever
-        // it changes: no iteration can make it smaller.
-        //
-        // The ledger uses the forces before this last correction, which moved q by about
-        // `tol` and the elastic energy by O(tol |Q|): an error of that step's report alone,
-        // not carried on.
-        let theta = dn / prev;
-        let contracting = estimate && full_step && prev.is_finite() && theta < 1.0;
-        let (left, share) = if contracting {
-            let share = theta / (1.0 - theta);
-            (dn * share, share)
-        } else {
-            (f64::INFINITY, 1.0)
-        };
-        let trajectory = dn <= tol || left <= tol || inertial <= energy_tol;
-        // The change of the ledger's total energy that the correction makes (J). The iterate's
-        // velocity and acceleration follow q (v = v* + gamma' (q - q*), q'' likewise with
-        // beta'), so the total, 1/2 v^T M v - Q_g . q + elastic, has the gradient
-        // gamma' M v - Q_g + Q_e = gamma' M v - M q'' + r, and the correction -dq changes it by
-        // (gamma' v - q'') . M dq + r . dq to first order; beta' dq^T M dq bounds the second
-        // order (the kinetic part, gamma'^2/2 dq^T M dq, is half of it at spectral radius 0.9)
-        // and guards a matrix that is not positive definite (a strand in compression, a matrix
-        // kept from another state), whose decrement can be small for a large correction.
-        let ledger = || {
-            let first: f64 = st
-                .vf
-                .iter()
-                .zip(&st.acc)
-                .zip(&w.mv)
-                .map(|((v, a), m)| (gamma_p * v - a) * m)
-                .sum();
-            (first + decrement).abs() + inertial
-        };
-        let converged = trajectory && share * ledger() <= ledger_tol;
-        step_by(beam, st, &w.dq, 1.0, gamma_p, beta_p);
-        if converged || w.lengths.within_round_off(beam, &w.dq, &st.q, 0.0) {
-            if linear && !fresh && theta.is_finite() && theta > opts.rebuild_rate {
-                w.stale = true;
-            }
-            outcome = Some(e);
-            break;
-        }
-        if iterations >= opts.max_iterations {
-            break;
-        }
-        // Secant acceleration of a slow kept matrix (Anderson mixing of depth one, Walker and
-        // Ni 2011), for the stick/slip laws. Their matrix is stiffer than their tangent where
-        // wires slip (the hysteretic law's `unloading` share: on the section-3 pendulum, with
-        // no wire changing state, the corrections after a fresh matrix shrink by 0.48 per
-        // iteration at 0.25, 0.24 at 0.1, 0.004 at 0), so modified Newton contracts linearly,
-        // by theta per iteration.
-        // Two corrections of the same matrix, c_k and c_{k-1}, with the move between their
-        // iterates, d_{k-1}, give the secant estimate of the step to the root: the iterate
-        // moves by -(c_k - g u), u = d_{k-1} + c_k - c_{k-1}, with g minimizing
-        // |c_k - g (c_k - c_{k-1})|, when theta > 0.1 and the incremental potential still
-        // falls along it (r . (c_k - g u) > 0). On the section-3 pendulum at 1e-3 s steps:
-        // continuous 4489 (467) -> 4250 (474) iterations (matrices), hysteretic 4292 (698) ->
-        // 4209 (602); on `long-run-100s`'s pendulum with either law, 20 s: 8.5 and 7.1 %
-        // fewer iterations. The convergence tests above always judge the plain correction.
-        let mut secant = None;
-        if !linear && history && !fresh && theta.is_finite() && theta > 0.1 {
-            let (mut dd, mut cd) = (0.0, 0.0);
-            for i in 0..nf {
-                let d = w.dq[i] - w.last_correction[i];
-                dd += d * d;
-                cd += w.dq[i] * d;
-                w.secant[i] = w.last_move[i] + d;
-            }
-            let g = cd / dd;
-            if g.is_finite() && g.abs() < MAX_SECANT {
-                let falls = decrement - g * dot(&w.r, &w.secant);
-                secant = (falls > 0.0).then_some((g, falls));
-            }
-        }
-        if !linear {
-            // The plain correction, before any secant step changes `dq`.
-            w.last_correction.copy_from_slice(&w.dq);
-        }
-        let mut slope = decrement;
-        if let Some((g, falls)) = secant {
-            step_by(beam, st, &w.secant, -g, gamma_p, beta_p);
-            for (d, u) in w.dq.iter_mut().zip(&w.secant) {
-                *d -= g * u;
-            }
-            slope = falls;
-        }
-        let accelerated = secant.is_some();
-        history = !linear;
-        // Rebuild the iteration matrix when the last correction shrank by less than
-        // `opts.refresh`: a stale tangent converges linearly at about that rate.
-        fresh = dn > opts.refresh * prev;
-        prev = dn;
-        ev = w.evaluate(beam, st, pts_new, fresh.then_some(tangent));
-        iterations += 1;
-        // After a secant step the next correction's ratio to this one is no contraction rate.
-        full_step = !accelerated;
-        if history {
-            w.last_move.copy_from_slice(&w.dq);
-        }
-        if fresh {
-            history = false;
-        }
-        // Line search: where the potential rises again at the full correction (a stick/slip
-        // kink was overshot: the slope -r . dq changed sign), step back to the root of the
-        // slope's secant.
-        let rises = dot(&w.r, &w.dq);
-        if ev.is_some() && slope > 0.0 && rises < 0.0 {
-            let alpha = slope / (slope - rises);
-            if alpha < opts.backtrack && iterations < opts.max_iterations {
-                step_by(beam, st, &w.dq, alpha - 1.0, gamma_p, beta_p);
-                for d in &mut w.last_move {
-                    *d *= alpha;
-                }
-                ev = w.evaluate(beam, st, pts_new, fresh.then_some(tangent));
-                iterations += 1;
-                full_step = false;
-            }
-        }
-    }
-    match outcome {
-        Some(mut ev) => {
-            if w.unbooked {
-                // The books of the accepted iterate: its trial state, energy and slip work.
-                let books = beam.book_points(&st.slip, &mut w.trial, pts_new);
-                ev.energy += books.energy;
-                ev.slip_work = books.slip_work;
-                ev.slipping = books.slipping;
-            }
-            for i in 0..nf {
-                st.alg[i] += (1.0 - af) / (1.0 - am) * (st.acc[i] - w.acc_pred[i]);
-            }
-            st.slip.copy_from_slice(&w.trial);
-            let non_potential = non_potential_work(pts, pts_new);
-            pts.copy_from_slice(pts_new);
-            Ok(StepOutcome {
-                iterations,
-                slip_work: ev.slip_work,
-                non_potential,
-                elastic: ev.energy,
-            })
-        }
-        None if depth > 0 => {
-            st.copy_from(&w.saved[level]);
-            w.cuts += 1;
-            let a = alpha_step(beam, opts, rho, t0, 0.5 * h, depth - 1, st, w, pts, pts_new)?;
-            let b = alpha_step(
-                beam,
-                opts,
-                rho,
-                t0 + 0.5 * h,
-                0.5 * h,
-                depth - 1,
-                st,
-                w,
-                pts,
-                pts_new,
-            )?;
-            Ok(StepOutcome {
-                iterations: iterations + a.iterations + b.iterations,
-                slip_work: a.slip_work + b.slip_work,
-                non_potential: a.non_potential + b.non_potential,
-                elastic: b.elastic,
-            })
-        }
-        None => Err(iterations),
-    }
-}
-
-/// Moves the generalized-alpha iterate by `-alpha dq`: coordinates, and velocities and
-/// accelerations with them.
-fn step_by(beam: &Beam, st: &mut AlphaState, dq: &[f64], alpha: f64, gamma_p: f64, beta_p: f64) {
-    add_free(beam, &mut st.q, -alpha, dq);
-    for ((v, a), d) in st.vf.iter_mut().zip(st.acc.iter_mut()).zip(dq) {
-        *v -= alpha * gamma_p * d;
-        *a -= alpha * beta_p * d;
-    }
-}
-
-/// Newton residual of the free coordinates, `r = M q'' + Q_e - Q_g`, from `mv = M q''`,
-/// the elastic forces of all coordinates and the free gravity forces.
-fn residual(beam: &Beam, mv: &[f64], force: &[f64], g_free: &[f64], r: &mut [f64]) {
-    gather_free(beam, force, r);
-    for ((ri, m), g) in r.iter_mut().zip(mv).zip(g_free) {
-        *ri = m + *ri - g;
-    }
-}
-
-/// Largest secant factor g of the Newton acceleration in a generalized-alpha step (a larger
-/// one extrapolates from two nearly equal corrections, where the iteration is not contracting).
-const MAX_SECANT: f64 = 10.0;
-
-/// Halvings of a generalized-alpha step before the run stops.
-const MAX_CUTS: usize = 10;
-
-fn generalized_alpha(
-    beam: &Beam,
-    opts: &DynamicOptions,
-    init: &InitialState,
-    h: f64,
-    rho: f64,
-    observer: &mut dyn FnMut(Frame<'_>),
-) -> Result<DynamicSummary, DynamicError> {
-    let (n_steps, h) = steps_for(opts.duration, h);
-    let nf = beam.dofs();
-    let b = beam.bandwidth();
-    let zeros = vec![0.0; nf];
-    let new_state = || AlphaState {
-        q: init.q.clone(),
-        vf: zeros.clone(),
-        acc: zeros.clone(),
-        alg: zeros.clone(),
-        acc_last: zeros.clone(),
-        slip: init.state.clone(),
-    };
-    let mut st = new_state();
-    gather_free(beam, &init.v, &mut st.vf);
-    let mut w = AlphaWork {
-        force: vec![0.0; beam.coords()],
-        r: zeros.clone(),
-        dq: zeros.clone(),
-        mv: zeros.clone(),
-        trial: beam.initial_state(),
-        g_free: zeros.clone(),
-        k: BandMatrix::zeros(nf, b, b),
-        solver: BandSolver::default(),
-        factor_h: 0.0,
-        factorizations: 0,
-        cuts: 0,
-        saved: (0..=MAX_CUTS).map(|_| new_state()).collect(),
-        rot: Corotation::new(beam, beam.reference()),
-        stale: false,
-        acc_pred: zeros.clone(),
-        alg_scale: zeros.clone(),
-        last_correction: zeros.clone(),
-        last_move: zeros.clone(),
-        secant: zeros.clone(),
-        lengths: Lengths::of(beam),
-        mass: beam.spec().mass_per_length * beam.length(),
-        motion: 0.0,
-        energy: 0.0,
-        unbooked: !beam.law().is_linear() && beam.spec().element == ElementKind::Planar,
-    };
-    gather_free(beam, beam.gravity_force(), &mut w.g_free);
-    let mut v = vec![0.0; beam.coords()];
-    let mut pts = vec![PointState::default(); beam.points()];
-    let mut pts_new = pts.clone();
-    let fail = |t: f64, step: usize| move |source| DynamicError::Beam { t, step, source };
-
-    let ev = beam
-        .internal(
-            &st.q,
-            &st.slip,
-            &mut w.trial,
-            &mut w.force,
-            None,
-            Some(&mut pts),
-        )
-        .map_err(fail(0.0, 0))?;
-    let mut m = BandSolver::default();
-    if !m.factorize(beam.mass()) {
-        return Err(DynamicError::Singular("mass"));
-    }
-    for (g, f) in w.force.iter().enumerate() {
-        if let Some(i) = beam.free_index(g) {
-            st.acc[i] = w.g_free[i] - f;
-        }
-    }
-    m.solve(&mut st.acc);
-    st.alg.copy_from_slice(&st.acc);
-    st.acc_last.copy_from_slice(&st.acc);
-    let mut drive = Drive::new(beam, &st.q, &init.v, &w.force);
-    let kinetic = beam.kinetic_energy(&st.vf, drive.velocity(), &mut w.mv);
-    let mut ledger = Ledger::new(beam, &st.q, ev.energy + kinetic);
-    let mut en = ledger.energies(beam, 0.0, &st.q, &st.vf, &drive, &mut w.mv, ev.energy);
-    w.energy = en.largest();
-    scatter_velocity(beam, &st.vf, &drive, &mut v);
-    observer(Frame {
-        t: 0.0,
-        q: &st.q,
-        v: &v,
-        energies: en,
-        points: &pts,
-        slip: &st.slip,
-    });
-    let mut newton_iterations = 0;
-    let mut next_out = opts.output_interval;
-    for step in 1..=n_steps {
-        let t = step as f64 * h;
-        drive.kick(beam, t - h, &mut st.vf, &m, &mut w.mv);
-        let out = alpha_step(
-            beam,
-            opts,
-            rho,
-            t - h,
-            h,
-            MAX_CUTS,
-            &mut st,
-            &mut w,
-            &mut pts,
-            &mut pts_new,
-        )
-        .map_err(|iterations| DynamicError::Newton {
-            t,
-            step,
-            iterations,
-            law: beam.law().kind().name(),
-        })?;
-        newton_iterations += out.iterations;
-        ledger.dissipated += out.slip_work;
-        ledger.non_potential += out.non_potential;
-        drive.end_step(beam, &st.q, &st.vf, &w.force);
-        en = ledger.energies(beam, t, &st.q, &st.vf, &drive, &mut w.mv, out.elastic);
-        w.energy = w.energy.max(en.largest());
-        if t >= next_out - 1e-9 * h || step == n_steps {
-            scatter_velocity(beam, &st.vf, &drive, &mut v);
-            observer(Frame {
-                t,
-                q: &st.q,
-                v: &v,
-                energies: en,
-                points: &pts,
-                slip: &st.slip,
-            });
-            while next_out <= t + 1e-9 * h {
-                next_out += opts.output_interval;
-            }
-        }
-    }
-    scatter_velocity(beam, &st.vf, &drive, &mut v);
-    Ok(DynamicSummary {
-        time_step: h,
-        stable_step: None,
-        steps: n_steps,
-        newton_iterations,
-        factorizations: w.factorizations,
-        cut_steps: w.cuts,
-        balance_error: ledger.balance_error,
-        max_kinetic: ledger.max_kinetic,
-        last: en,
-        q: st.q,
-        v,
-        slip: st.slip,
     })
 }

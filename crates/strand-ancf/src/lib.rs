@@ -32,6 +32,7 @@ pub mod load;
 pub mod mass;
 mod measure;
 mod moving_support;
+mod output_times;
 pub mod planar;
 mod scatter;
 pub mod shape;

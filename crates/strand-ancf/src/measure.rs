@@ -51,6 +51,16 @@ impl Lengths {
             .fold(0.0f64, |a, (d, s)| a.max(norm(d) * s[0]))
     }
 
+    /// The largest node force of a vector `r` of generalized forces of the free coordinates
+    /// (N): a position's force as it is, a slope's moment (N m) over the element length, the
+    /// force conjugate to the displacement [`Self::displacement`] measures.
+    pub(crate) fn force(&self, r: &[f64]) -> f64 {
+        let v = self.vector;
+        r.chunks_exact(v)
+            .zip(self.scale.chunks_exact(v))
+            .fold(0.0f64, |a, (f, s)| a.max(norm(f) / s[0]))
+    }
+
     /// `sum_i s_i^2 a_i b_i`: the inner product of two changes of the free coordinates in
     /// length units (m^2).
     pub(crate) fn dot(&self, a: &[f64], b: &[f64]) -> f64 {

@@ -12,6 +12,7 @@ pub mod bonded;
 pub mod convergence;
 pub mod error;
 pub mod geometry;
+pub mod round_off;
 pub mod section;
 pub mod summary;
 pub mod wire;

@@ -449,7 +449,12 @@ pub fn solve_settled(
                 state.clone_from(&saved);
             }
         }
-        if motion.int.time + options.retry_interval > give_up + 1e-12 {
+        // The retries' motion counts against the same step budget as the settling: without it a
+        // strand whose stable step is tiny (a strand shorter than its wires are thick) moved on
+        // for `retry_time` at that step, for ever in effect.
+        let budget = options.settle.max_steps.unwrap_or(u64::MAX);
+        if motion.int.time + options.retry_interval > give_up + 1e-12 || motion.int.steps >= budget
+        {
             return Ok(SettledReport {
                 settle: settled,
                 polish: None,
@@ -461,7 +466,7 @@ pub fn solve_settled(
         }
         // The motion goes on from the state it stopped at (momenta included).
         let until = motion.int.time + options.retry_interval;
-        let (_, ratio, residual) = motion.run(model, state, until, u64::MAX, progress)?;
+        let (_, ratio, residual) = motion.run(model, state, until, budget, progress)?;
         settled = SettleReport {
             discarded_steps: settled.discarded_steps,
             ..motion.report(ratio, residual)

@@ -23,7 +23,7 @@ use crate::scene::{Analysis, BeamModel, End, IntegratorKind, Output, Scene, Supp
 use super::beam_state;
 use super::budget;
 use super::record::{
-    BALANCE_WARNING, Failure, RunError, RunOptions, RunSummary, Stop, finish, io_err,
+    Failure, RunError, RunOptions, RunSummary, Stop, balance_open, finish, io_err,
 };
 
 fn beam_support(scene: &Scene, end: End) -> Option<BeamSupport> {
@@ -602,8 +602,9 @@ fn run_dynamics(
     summary.time_step = Some(s.time_step);
     summary.stable_time_step = s.stable_step.or(summary.stable_time_step);
     summary.non_potential_work = Some(s.last.non_potential);
-    // Above round-off of the energy sums: the law has put energy into the strand.
-    if s.last.non_potential > 1e-9 * s.max_kinetic {
+    // Above round-off of the energy sums and the round-off floor of the balance: the law has
+    // put energy into the strand.
+    if s.last.non_potential > (1e-9 * s.max_kinetic).max(s.balance_floor) {
         let kind = beam.law().kind();
         let (work, relative) = (
             s.last.non_potential,
@@ -635,7 +636,7 @@ fn run_dynamics(
             opts.output_interval, s.time_step
         ));
     }
-    if relative > BALANCE_WARNING {
+    if balance_open(s.balance_error, s.max_kinetic, s.balance_floor) {
         summary.warnings.push(format!(
             "energy balance not closed: the error {:.3e} J is {relative:.2e} of the largest \
              kinetic energy; the time step {:.3e} s is too coarse for this motion (with the \

@@ -8,6 +8,14 @@ use serde::Serialize;
 /// warns that its result is not to be trusted.
 pub const BALANCE_WARNING: f64 = 0.05;
 
+/// Whether a dynamic run's energy balance is open: its error is above [`BALANCE_WARNING`] of
+/// the largest kinetic energy by more than `floor` (J), the error round-off alone can make
+/// (`strand_core::round_off`). A strand at rest is moved by round-off alone, and its balance
+/// error is then of the size of its kinetic energy: below the floor, the balance says nothing.
+pub(crate) fn balance_open(error: f64, max_kinetic: f64, floor: f64) -> bool {
+    error > BALANCE_WARNING * max_kinetic + floor
+}
+
 /// Options of a run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunOptions {
