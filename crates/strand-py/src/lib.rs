@@ -231,6 +231,33 @@ impl PyScene {
         let summary = result.map_err(|e| PyValueError::new_err(e.to_string()))?;
         to_json(&summary)
     }
+
+    /// The section law's bending curve of `strand bend --model equivalent`: the moment at
+    /// tension `tension` (N) along 0 -> a -> -a -> a (`amplitude` a, 1/m; default three times
+    /// the largest critical curvature), `steps` steps from 0 to a, averaged over the longest
+    /// pitch; writes `out/law-bending.csv` and `out/law-summary.json`, returns the summary as
+    /// JSON.
+    #[pyo3(signature = (out, tension, amplitude=None, steps=100))]
+    fn law_bend(
+        &self,
+        py: Python<'_>,
+        out: PathBuf,
+        tension: f64,
+        amplitude: Option<f64>,
+        steps: usize,
+    ) -> PyResult<String> {
+        let scene = self.scene.clone();
+        let opts = strand_scene::LawBendingOptions {
+            tension,
+            amplitude,
+            steps,
+            out,
+        };
+        let summary = py
+            .detach(move || strand_scene::run_law_bending(&scene, &opts))
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        to_json(&summary)
+    }
 }
 
 /// The module `strand._strand`.

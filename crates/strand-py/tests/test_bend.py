@@ -26,3 +26,33 @@ def test_bend_matches_the_command_and_lies_between_the_bounds(static_scene, scen
     s = r.summary
     k = r.points["moment"] / r.points["curvature"]
     assert ((k > s["k_min"]) & (k < s["k_max"])).all()
+
+
+def test_equivalent_bend_matches_the_command_and_its_loop_area_is_the_slip_work(static_scene, scene_file, tmp_path):
+    """`strand.bend(model="equivalent")` writes what `strand bend --model equivalent` writes, bit
+    for bit, and the hysteretic law's loop returns its stored energy: over the closed part of
+    the path (-a -> a -> -a is not closed, but 0 -> a -> -a -> a ends where the first reversal
+    started) the loop area the summary reports equals the slip work within the trapezoid
+    rule's error: per step of dk = a / n at most K_max dk^2 (the moment's change over a step is
+    at most K_max dk), over the 5 n steps of the path."""
+    scene = dict(static_scene, law="hysteretic")
+    f = scene_file(scene)
+    out = tmp_path / "cli"
+    args = [cli_path(), "bend", str(f), "--model", "equivalent", "--tension", "50", "--steps", "40", "--out", str(out)]
+    subprocess.run(args, check=True, capture_output=True)
+    r = strand.bend(scene, 50.0, model="equivalent", steps=40)
+    header, cols = read_cli_csv(out / "law-bending.csv")
+    assert list(r.points.columns) == header
+    for c in header:
+        assert same_bits(r.points[c].to_numpy(dtype=np.float64), cols[c]), c
+    s = r.summary
+    assert s["dissipated"] > 0.0
+    a, n = s["amplitude"], 40
+    bound = 5 * n * s["k_max"] * (a / n) ** 2
+    assert abs(s["loop_area"] - s["dissipated"]) <= bound, (s["loop_area"], s["dissipated"], bound)
+    try:
+        strand.bend(scene, 50.0, model="coarse")
+    except ValueError as e:
+        assert "model" in str(e)
+    else:
+        raise AssertionError("an unknown model was accepted")

@@ -7,7 +7,8 @@ The package wraps the same Rust code as the ``strand`` command:
 * :func:`run` -- ``strand run``: the results as pandas DataFrames and the summary as a dict;
 * :func:`section` -- the section law over NumPy arrays, and the derived quantities that
   ``strand section`` prints; :func:`section_point` -- all of ``strand section --json``;
-* :func:`bend` -- ``strand bend``, the virtual bending test of the fine model beside the law;
+* :func:`bend` -- ``strand bend``, the virtual bending test of the fine model beside the law, or the
+  equivalent model's section law with a load reversal;
 * :func:`sweep` -- a parameter study over field paths, on local processes, a Dask cluster or
   Ray, resumable from its output folder.
 """

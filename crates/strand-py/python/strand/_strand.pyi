@@ -57,3 +57,10 @@ class Scene:
         threads: Optional[int] = None,
         progress: Optional[Callable[[str, float], object]] = None,
     ) -> str: ...
+    def law_bend(
+        self,
+        out: Union[str, Path],
+        tension: float,
+        amplitude: Optional[float] = None,
+        steps: int = 100,
+    ) -> str: ...
