@@ -114,28 +114,6 @@ def _rows(index: int, key: str, params: Mapping[str, Any], record: Mapping[str, 
     return rows
 
 
-class _Local:
-    """Local processes (concurrent.futures), ``workers`` of them."""
-
-    def __init__(self, workers: Optional[int], threads: int) -> None:
-        n = workers or max(1, (os.cpu_count() or 1) // threads)
-        ctx = multiprocessing.get_context("spawn")
-        self.pool = cf.ProcessPoolExecutor(max_workers=n, mp_context=ctx, initializer=_pin_threads, initargs=(threads,))
-
-    def submit(self, *args: Any) -> Any:
-        return self.pool.submit(run_point, *args)
-
-    def as_completed(self, futures: List[Any]) -> Iterator[Any]:
-        return cf.as_completed(futures)
-
-    @staticmethod
-    def result(future: Any) -> Dict[str, Any]:
-        return future.result()
-
-    def close(self, cancel: bool) -> None:
-        self.pool.shutdown(wait=not cancel, cancel_futures=cancel)
-
-
 class _Futures:
     """A ``concurrent.futures.Executor`` the caller owns."""
 
@@ -157,6 +135,20 @@ class _Futures:
         if cancel:
             for f in self.pending:
                 f.cancel()
+
+
+class _Local(_Futures):
+    """Local processes (concurrent.futures), ``workers`` of them, owned by the sweep."""
+
+    def __init__(self, workers: Optional[int], threads: int) -> None:
+        n = workers or max(1, (os.cpu_count() or 1) // threads)
+        ctx = multiprocessing.get_context("spawn")
+        super().__init__(
+            cf.ProcessPoolExecutor(max_workers=n, mp_context=ctx, initializer=_pin_threads, initargs=(threads,))
+        )
+
+    def close(self, cancel: bool) -> None:
+        self.executor.shutdown(wait=not cancel, cancel_futures=cancel)
 
 
 class _Dask:
