@@ -54,11 +54,13 @@ def compare_with_cli(scene, scene_file, cli, tmp_path, models=None):
             expected = json.load(fh)
         got = {k: v for k, v in r.summary.items() if k not in TIMINGS}
         assert got == {k: v for k, v in expected.items() if k not in TIMINGS}
-        files = sorted(p.stem for p in d.glob("*.csv"))
+        files = sorted(p.stem for p in d.glob("*.csv") if not p.stem.startswith("probe_"))
         assert files == sorted(n for n in strand.results.FRAMES if getattr(r, n) is not None)
-        for name in files:
+        probes = sorted(p.stem for p in d.glob("probe_*.csv"))
+        assert probes == sorted(f"probe_{s}" for s in r.probes)
+        for name in files + probes:
             header, cols = read_cli_csv(d / f"{name}.csv")
-            df = getattr(r, name)
+            df = r.probes[name[len("probe_") :]] if name.startswith("probe_") else getattr(r, name)
             assert list(df.columns) == header, name
             for c in header:
                 if isinstance(cols[c], list):
@@ -168,3 +170,11 @@ def test_ctrl_c_stops_a_run_and_the_interpreter_goes_on(dynamic_scene, tmp_path)
     assert "panicked" not in err, err
     # The 500 s run takes minutes; the stop comes within a progress report (a step).
     assert stopped < 20.0
+
+
+def test_probes_and_ranges_match_the_command_bit_for_bit(dynamic_scene, scene_file, cli, tmp_path):
+    scene = dict(dynamic_scene, output={"probes": [0.5, 1.0], "range_window": [0.05, 0.2]})
+    r = compare_with_cli(scene, scene_file, cli, tmp_path)
+    eq = r["equivalent"]
+    assert sorted(eq.probes) == ["0.5", "1"]
+    assert eq.range is not None and len(eq.range) == len(eq.centerline)

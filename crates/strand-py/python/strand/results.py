@@ -17,7 +17,7 @@ from .scene import PathLike, Scene
 _PANDAS_MAJOR = int(pd.__version__.split(".")[0])
 
 #: The result files of a model's folder that become DataFrames (SPEC 6), by attribute.
-FRAMES = ("centerline", "tip", "energy", "wires", "contacts")
+FRAMES = ("centerline", "tip", "energy", "wires", "contacts", "range")
 
 
 def read_csv(path: Path) -> pd.DataFrame:
@@ -32,8 +32,10 @@ def read_csv(path: Path) -> pd.DataFrame:
 @dataclass
 class ModelResult:
     """One model's results: its ``summary.json`` as a dict and its CSV files as DataFrames
-    (``None`` for a file the run does not write: ``tip``/``energy`` are dynamics only,
-    ``contacts`` the fine model's). Columns and units are those of the files (SPEC 6)."""
+    (``None`` for a file the run does not write: ``tip``/``energy``/``range`` are dynamics
+    only, ``contacts`` the fine model's). ``probes`` maps each probe's arc length, as the file
+    ``probe_<s>.csv`` names it, to that file. Columns and units are those of the files (the
+    manual's Results pages)."""
 
     model: str
     summary: Dict[str, Any]
@@ -42,6 +44,8 @@ class ModelResult:
     energy: Optional[pd.DataFrame] = None
     wires: Optional[pd.DataFrame] = None
     contacts: Optional[pd.DataFrame] = None
+    range: Optional[pd.DataFrame] = None
+    probes: Dict[str, pd.DataFrame] = field(default_factory=dict)
     directory: Optional[Path] = None
 
     @property
@@ -61,7 +65,14 @@ class ModelResult:
         for name in FRAMES:
             p = directory / f"{name}.csv"
             frames[name] = read_csv(p) if p.exists() else None
-        return cls(model=summary["model"], summary=dict(summary), directory=directory if keep else None, **frames)
+        probes = {p.stem[len("probe_") :]: read_csv(p) for p in sorted(directory.glob("probe_*.csv"))}
+        return cls(
+            model=summary["model"],
+            summary=dict(summary),
+            directory=directory if keep else None,
+            probes=probes,
+            **frames,
+        )
 
 
 @dataclass
@@ -123,6 +134,12 @@ class Result:
     def contacts(self) -> Optional[pd.DataFrame]:
         """``contacts.csv`` (fine model)."""
         return self._stack("contacts")
+
+    @property
+    def range(self) -> Optional[pd.DataFrame]:
+        """``range.csv`` (dynamics): min, max and mean of curvature, moment, tension and
+        bending stiffness at every centreline point over the run (or ``output.range_window``)."""
+        return self._stack("range")
 
     def __repr__(self) -> str:
         parts = ", ".join(f"{m}: {r.status}" for m, r in self.models.items())
