@@ -412,7 +412,8 @@ impl ParetoReport {
                 if l.starts_with("## ") {
                     format!("##{l}")
                 } else {
-                    l.to_string()
+                    // The figures sit in the manual's figures/ folder (copy_figures).
+                    l.replace("](pareto-", "](figures/pareto-")
                 }
             })
             .collect::<Vec<_>>()
