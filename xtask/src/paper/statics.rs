@@ -76,7 +76,7 @@ pub(crate) fn load_wires(dir: &Path) -> anyhow::Result<Vec<WireRow>> {
         std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
     let mut lines = text.lines().filter(|l| !l.trim().is_empty());
     let header: Vec<&str> = lines.next().context("no header")?.split(',').collect();
-    if header != ["s", "wire", "phase", "critical_curvature", "state"] {
+    if header != ["s", "wire", "phase", "critical_curvature", "state", "layer"] {
         bail!("{}: unexpected header {header:?}", path.display());
     }
     lines
@@ -84,8 +84,12 @@ pub(crate) fn load_wires(dir: &Path) -> anyhow::Result<Vec<WireRow>> {
         .map(|(i, l)| {
             let f: Vec<&str> = l.split(',').map(str::trim).collect();
             let row = || -> anyhow::Result<WireRow> {
-                if f.len() != 5 {
+                if f.len() != 6 {
                     bail!("{} fields", f.len());
+                }
+                // The paper's strands have one layer.
+                if f[5] != "1" {
+                    bail!("layer `{}`: the paper's figures are of a 1+m strand", f[5]);
                 }
                 Ok(WireRow {
                     s: f[0].parse()?,
