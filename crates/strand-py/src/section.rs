@@ -5,7 +5,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use strand_core::SectionLaw;
-use strand_scene::section_batch::{PlanarArrays, evaluate_planar};
+use strand_scene::section_batch::{PlanarOutputs, evaluate_planar};
 
 fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
     a.as_slice()
@@ -28,33 +28,27 @@ pub fn evaluate<'py>(
         slice("x", x)?,
         slice("state", state)?,
     );
-    let len = e.len();
-    let mut v: [Vec<f64>; 6] = std::array::from_fn(|_| vec![0.0; len]);
-    let mut trial = vec![0.0; len * law.state_len()];
-    {
-        let [a, b, c, d, f, g] = &mut v;
-        let out = PlanarArrays {
-            axial_force: a,
-            moment: b,
-            tangent: c,
-            energy: d,
-            slip_work: f,
-            slipping: g,
-            state: &mut trial,
-        };
-        evaluate_planar(law, e, k, at, s, out).map_err(|e| PyValueError::new_err(e.0))?;
-    }
-    let [a, b, c, d, f, g] = v;
+    let mut out = PlanarOutputs::zeros(e.len(), law.state_len());
+    evaluate_planar(law, e, k, at, s, out.arrays()).map_err(|e| PyValueError::new_err(e.0))?;
+    let PlanarOutputs {
+        axial_force,
+        moment,
+        tangent,
+        energy,
+        slip_work,
+        slipping,
+        state,
+    } = out;
     PyTuple::new(
         py,
         [
-            a.into_pyarray(py),
-            b.into_pyarray(py),
-            c.into_pyarray(py),
-            d.into_pyarray(py),
-            f.into_pyarray(py),
-            g.into_pyarray(py),
-            trial.into_pyarray(py),
+            axial_force.into_pyarray(py),
+            moment.into_pyarray(py),
+            tangent.into_pyarray(py),
+            energy.into_pyarray(py),
+            slip_work.into_pyarray(py),
+            slipping.into_pyarray(py),
+            state.into_pyarray(py),
         ],
     )
 }

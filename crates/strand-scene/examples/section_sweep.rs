@@ -13,7 +13,7 @@ use std::time::Instant;
 
 use strand_core::{LawKind, SectionLaw};
 use strand_scene::Scene;
-use strand_scene::section_batch::{PlanarArrays, evaluate_planar};
+use strand_scene::section_batch::{PlanarOutputs, evaluate_planar};
 
 const POINTS: usize = 1000;
 const REPEATS: usize = 2000;
@@ -32,34 +32,15 @@ fn main() {
         let law = SectionLaw::with_options(&scene.strand, kind, &scene.section);
         let n = law.state_len();
         let state = vec![0.0; POINTS * n];
-        let mut v = vec![vec![0.0; POINTS]; 6];
-        let mut trial = vec![0.0; POINTS * n];
+        let mut out = PlanarOutputs::zeros(POINTS, n);
         let mut times = Vec::with_capacity(REPEATS);
         let mut check = 0.0;
         for _ in 0..REPEATS {
-            let [a, b, c, d, f, g] = &mut v[..] else {
-                unreachable!()
-            };
             let t = Instant::now();
-            evaluate_planar(
-                &law,
-                &strain,
-                &curvature,
-                &x,
-                &state,
-                PlanarArrays {
-                    axial_force: a,
-                    moment: b,
-                    tangent: c,
-                    energy: d,
-                    slip_work: f,
-                    slipping: g,
-                    state: &mut trial,
-                },
-            )
-            .expect("consistent arrays");
+            evaluate_planar(&law, &strain, &curvature, &x, &state, out.arrays())
+                .expect("consistent arrays");
             times.push(t.elapsed().as_secs_f64());
-            check += v[1][POINTS / 3];
+            check += out.moment[POINTS / 3];
         }
         times.sort_by(f64::total_cmp);
         println!(

@@ -23,6 +23,55 @@ pub struct PlanarArrays<'a> {
     pub state: &'a mut [f64],
 }
 
+/// Owned buffers for the responses of [`evaluate_planar`] at `points` points: what a caller
+/// that keeps the results (Python's arrays, a test, a timing loop reusing them) allocates once.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlanarOutputs {
+    /// Axial force N (N).
+    pub axial_force: Vec<f64>,
+    /// Bending moment M_z (N m).
+    pub moment: Vec<f64>,
+    /// Tangent stiffness dM/dkappa (N m^2).
+    pub tangent: Vec<f64>,
+    /// Stored energy density (J/m).
+    pub energy: Vec<f64>,
+    /// Slip work (J/m).
+    pub slip_work: Vec<f64>,
+    /// Number of slipping wires.
+    pub slipping: Vec<f64>,
+    /// Trial state, `state_len` values per point.
+    pub state: Vec<f64>,
+}
+
+impl PlanarOutputs {
+    /// Zeroed buffers for `points` points of a law with `state_len` state values per point.
+    pub fn zeros(points: usize, state_len: usize) -> Self {
+        let v = || vec![0.0; points];
+        PlanarOutputs {
+            axial_force: v(),
+            moment: v(),
+            tangent: v(),
+            energy: v(),
+            slip_work: v(),
+            slipping: v(),
+            state: vec![0.0; points * state_len],
+        }
+    }
+
+    /// The buffers as the output of [`evaluate_planar`].
+    pub fn arrays(&mut self) -> PlanarArrays<'_> {
+        PlanarArrays {
+            axial_force: &mut self.axial_force,
+            moment: &mut self.moment,
+            tangent: &mut self.tangent,
+            energy: &mut self.energy,
+            slip_work: &mut self.slip_work,
+            slipping: &mut self.slipping,
+            state: &mut self.state,
+        }
+    }
+}
+
 /// A batch whose arrays do not fit together.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("{0}")]
@@ -121,8 +170,6 @@ mod tests {
         s.strand
     }
 
-    struct Owned(Vec<Vec<f64>>, Vec<f64>);
-
     fn try_run(
         law: &SectionLaw,
         e: &[f64],
@@ -130,26 +177,13 @@ mod tests {
         x: &[f64],
         s: &[f64],
         len: usize,
-    ) -> Result<Owned, BatchError> {
-        let mut v = vec![vec![0.0; len]; 6];
-        let mut st = vec![0.0; len * law.state_len()];
-        let [a, b, c, d, f, g] = &mut v[..] else {
-            unreachable!()
-        };
-        let out = PlanarArrays {
-            axial_force: a,
-            moment: b,
-            tangent: c,
-            energy: d,
-            slip_work: f,
-            slipping: g,
-            state: &mut st,
-        };
-        evaluate_planar(law, e, k, x, s, out)?;
-        Ok(Owned(v, st))
+    ) -> Result<PlanarOutputs, BatchError> {
+        let mut out = PlanarOutputs::zeros(len, law.state_len());
+        evaluate_planar(law, e, k, x, s, out.arrays())?;
+        Ok(out)
     }
 
-    fn run(law: &SectionLaw, e: &[f64], k: &[f64], x: &[f64], s: &[f64]) -> Owned {
+    fn run(law: &SectionLaw, e: &[f64], k: &[f64], x: &[f64], s: &[f64]) -> PlanarOutputs {
         try_run(law, e, k, x, s, e.len()).unwrap()
     }
 
@@ -171,13 +205,13 @@ mod tests {
                 let mut trial = vec![0.0; n];
                 let r = law.planar(&st, e[i], k[i], &s[i * n..(i + 1) * n], &mut trial);
                 assert_eq!(
-                    got.0[1][i].to_bits(),
+                    got.moment[i].to_bits(),
                     r.moment.to_bits(),
                     "{kind} point {i}"
                 );
-                assert_eq!(got.0[2][i].to_bits(), r.moment_curvature.to_bits());
-                assert_eq!(got.0[3][i].to_bits(), r.energy.to_bits());
-                assert_eq!(&got.1[i * n..(i + 1) * n], &trial[..]);
+                assert_eq!(got.tangent[i].to_bits(), r.moment_curvature.to_bits());
+                assert_eq!(got.energy[i].to_bits(), r.energy.to_bits());
+                assert_eq!(&got.state[i * n..(i + 1) * n], &trial[..]);
             }
         }
     }
@@ -208,11 +242,11 @@ mod tests {
                 let st = law.station(x[i]);
                 let mut trial = vec![0.0; n];
                 let r = law.planar(&st, e[i], k[i], &s[i * n..(i + 1) * n], &mut trial);
-                proptest::prop_assert_eq!(got.0[1][i].to_bits(), r.moment.to_bits());
-                proptest::prop_assert_eq!(got.0[2][i].to_bits(), r.moment_curvature.to_bits());
-                proptest::prop_assert_eq!(got.0[3][i].to_bits(), r.energy.to_bits());
-                proptest::prop_assert_eq!(got.0[4][i].to_bits(), r.slip_work.to_bits());
-                proptest::prop_assert_eq!(&got.1[i * n..(i + 1) * n], &trial[..]);
+                proptest::prop_assert_eq!(got.moment[i].to_bits(), r.moment.to_bits());
+                proptest::prop_assert_eq!(got.tangent[i].to_bits(), r.moment_curvature.to_bits());
+                proptest::prop_assert_eq!(got.energy[i].to_bits(), r.energy.to_bits());
+                proptest::prop_assert_eq!(got.slip_work[i].to_bits(), r.slip_work.to_bits());
+                proptest::prop_assert_eq!(&got.state[i * n..(i + 1) * n], &trial[..]);
             }
         }
     }
@@ -221,7 +255,7 @@ mod tests {
     fn rejects_mismatched_and_non_finite_inputs() {
         let law = SectionLaw::new(&strand(), LawKind::Continuous);
         let err = |e: &[f64], k: &[f64], x: &[f64]| {
-            try_run(&law, e, k, x, &[], 2).err().expect("rejected").0
+            try_run(&law, e, k, x, &[], 2).expect_err("rejected").0
         };
         assert!(err(&[0.0, 0.0], &[1.0], &[0.0, 0.0]).starts_with("curvature has 1 points"));
         assert!(err(&[0.0, 0.0], &[1.0, f64::NAN], &[0.0; 2]).starts_with("point 1:"));
