@@ -475,13 +475,44 @@ const ROUND_OFF: f64 = 16.0;
 /// there. The stiff axial springs of a thin strand make that far larger than `eps` times the
 /// load along the strand (Newton stalls at 1.3e-9 of the section-3 strand's weight), and
 /// nothing across a straight strand, so that a tiny transverse load is still resolved.
+///
+/// A force is computed from differences of node positions, whose round-off is that of the
+/// larger of the two: a position coordinate therefore counts with the extent of the strand
+/// in its direction ([`position_extents`]), held nodes included, not with its own value. (A
+/// strand held at `x = L` and pulled along x by 1e-6 N: its free node at the origin has
+/// `|q| = 0`, yet its axial force carries `eps EA` from the held node's `x = L`; Newton left
+/// 1.4e-5 of that load, all round-off, and the step was cut to nothing.)
 fn converged(beam: &Beam, w: &mut Work, tol: f64) -> bool {
+    let extents = position_extents(beam, &w.q_try);
+    let nd = beam.node_coords();
     let [q, kq] = &mut w.round_off;
-    gather_free(beam, &w.q_try, q);
+    for (g, x) in w.q_try.iter().enumerate() {
+        if let Some(i) = beam.free_index(g) {
+            let c = g % nd;
+            q[i] = if c < nd / 2 {
+                x.abs().max(extents[c])
+            } else {
+                x.abs()
+            };
+        }
+    }
     w.k.abs_mul_vec(q, kq);
     w.r.iter()
         .zip(kq.iter())
         .all(|(r, f)| r.abs() <= tol + ROUND_OFF * f64::EPSILON * f)
+}
+
+/// The largest absolute position coordinate of any node, held or free, per direction (m):
+/// the size of the numbers whose differences make the strains.
+fn position_extents(beam: &Beam, q: &[f64]) -> [f64; 3] {
+    let nd = beam.node_coords();
+    let mut extents = [0.0_f64; 3];
+    for node in q.chunks_exact(nd) {
+        for (e, x) in extents.iter_mut().zip(&node[..nd / 2]) {
+            *e = e.max(x.abs());
+        }
+    }
+    extents
 }
 
 /// The element (0-based) and material coordinate (m) of the node that free coordinate `i`

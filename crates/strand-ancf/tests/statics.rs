@@ -2,7 +2,7 @@
 //! cantilever, the inextensible elastica (SPEC 7), the shooting solution with the same
 //! stick/slip law (`strand-elastica`), and the paper's section-3 observations.
 
-use strand_ancf::beam::{Beam, BeamSpec, ElementKind, Support};
+use strand_ancf::beam::{Beam, BeamSpec, ElementKind, HOURGLASS, Support};
 use strand_ancf::statics::{StaticOptions, solve_static};
 use strand_core::{LawKind, SectionLaw, Strand, StrandSpec};
 
@@ -523,4 +523,52 @@ fn hysteretic_statics_barely_depend_on_the_steps() {
         d < mesh,
         "steps move the result by {d} m, the mesh's error is {mesh} m"
     );
+}
+
+/// A strand held at its far end and loaded along its own axis by a tiny weight stretches (or
+/// shortens) as a bar under its own weight, `u(0) = g_x mu L^2 / (2 EA)` at the free end, down
+/// to the round-off of positions of the strand's size. Newton's round-off floor must count the
+/// held node's coordinate: at the origin the free node's own `|x|` is zero, and a floor from it
+/// alone left every such load unresolved (1 element, 1e-6 N along the strand: the step was cut
+/// to nothing, "no equilibrium found beyond load fraction 0"). The hourglass penalty, of
+/// weight [`HOURGLASS`] relative to the axial stiffness, stiffens the bar by at most that
+/// fraction (measured: 5.0e-7 for every law, load and mesh here).
+#[test]
+fn tiny_axial_loads_on_a_strand_held_at_its_far_end() {
+    let s = strand(1.0, 2.0e9, 5747.0, true);
+    let mu = s.mass_per_length();
+    for kind in [LawKind::Constant, LawKind::Continuous, LawKind::Hysteretic] {
+        for elements in [1, 4] {
+            for g in [2.9e-4, -2.9e-4, 1e-9, 10.0] {
+                let law = SectionLaw::new(&s, kind);
+                let ea = law.axial_stiffness();
+                let beam = Beam::new(
+                    BeamSpec {
+                        elements,
+                        bending_points: None,
+                        mass_per_length: mu,
+                        element: ElementKind::Planar,
+                        direction: [1.0, 0.0, 0.0],
+                        gravity: [g, 0.0, 0.0],
+                        start: None,
+                        end: Some(Support::Clamped),
+                        ..Default::default()
+                    },
+                    law,
+                )
+                .unwrap();
+                let sol = solve_static(&beam, &StaticOptions::default(), &mut |_| {})
+                    .unwrap_or_else(|e| panic!("{kind}, {elements} elements, g = {g:e}: {e}"));
+                let (p, _) = beam.sample(&sol.q, 0.0);
+                let want = g * mu / (2.0 * ea);
+                let floor = 64.0 * f64::EPSILON * elements as f64;
+                assert!(
+                    (p[0] - want).abs() <= HOURGLASS * want.abs() + floor,
+                    "{kind}, {elements} elements, g = {g:e}: free end at {:e} m, want {want:e}",
+                    p[0]
+                );
+                assert!(p[1].abs() <= floor, "{kind}: sideways {:e} m", p[1]);
+            }
+        }
+    }
 }
