@@ -107,6 +107,9 @@ impl Ctx<'_> {
             )
         })?;
         let mut row = Row::measured(self.name, key, "-", value, unit, limit.bound());
+        if let Some(open) = &limit.open {
+            row = row.opened(open);
+        }
         row.why = limit.why.clone();
         Ok(row)
     }

@@ -144,6 +144,13 @@ pub fn run(args: &ValidateArgs) -> anyhow::Result<Report> {
             bar: &bar,
             base: i as u64 * 1000,
             tag: format!("[{}/{}]", i + 1, plan.len()),
+            balance: tolerances.scenes[&scene.name]
+                .checks
+                .iter()
+                .find_map(|c| match c {
+                    CheckSpec::EnergyBalance(t) => Some(t.relative + t.fine.unwrap_or(t.relative)),
+                    _ => None,
+                }),
         };
         let r = ctx.validate(specs);
         for row in r.iter().filter(|r| r.status == report::Status::Fail) {
@@ -247,6 +254,9 @@ struct SceneRun<'a> {
     base: u64,
     /// `[i/N]`: which scene of the plan this is.
     tag: String,
+    /// The limit of a total-energy difference against the fine model: the equivalent's
+    /// plus the fine model's energy-balance limit (relative to the largest kinetic energy).
+    balance: Option<f64>,
 }
 
 impl SceneRun<'_> {
@@ -453,6 +463,7 @@ impl SceneRun<'_> {
                             &self.out.join("fine"),
                             dynamic,
                             t,
+                            self.balance,
                         )),
                         Err(e) => rows.push(Row::failed(
                             &name,
