@@ -5,6 +5,8 @@
 //! A result computed with mesh size h behaves as u(h) = u + C h^p + ...; on meshes h, h/r,
 //! h/r^2 the changes d1 = |u(h/r) - u(h)| and d2 = |u(h/r^2) - u(h/r)| give the observed order
 //! p = ln(d1/d2) / ln(r), and the finest result's error is about d2 / (r^p - 1) (Richardson).
+//! One order estimate does not show that the meshes are in the asymptotic range; a fourth
+//! mesh gives a second, and the order counts only when the two agree ([`Richardson`]).
 //! Results may be vectors (a centreline, a tip trajectory): the changes are then the caller's
 //! norm of the difference, and the limit is extrapolated component by component with one order.
 
@@ -14,55 +16,87 @@ pub fn observed_order(d_coarse: f64, d_fine: f64, ratio: f64) -> f64 {
     (d_coarse / d_fine).ln() / ratio.ln()
 }
 
-/// The Richardson extrapolation of a result from its two finest meshes.
+/// Largest difference between the two order estimates of a four-level refinement for the
+/// order to count as established: a quarter of an order. Two estimates closer than this
+/// show the changes falling as one power law over three refinements; a wider spread (a
+/// falling or rising order) shows the meshes outside the asymptotic range.
+pub const ORDER_AGREEMENT: f64 = 0.25;
+
+/// The Richardson extrapolation of a result from four meshes refined by a constant ratio.
+///
+/// The three changes d1, d2, d3 between successive meshes give two order estimates,
+/// p1 = ln(d1/d2)/ln r and p2 = ln(d2/d3)/ln r. The order is established when both are
+/// positive and finite and differ by at most [`ORDER_AGREEMENT`]; the order used is then the
+/// smaller of the two, capped at the scheme's formal order (an observed order above the
+/// formal one is a cancellation of error terms, not a faster convergence to count on). Only
+/// an established order extrapolates: otherwise no order is used and the finest result
+/// stands, its error not estimated.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Richardson {
-    /// The order measured from the two changes (may be outside the accepted range, or not
-    /// finite when a change is zero).
-    pub observed_order: f64,
-    /// The order used: the observed one clamped to the accepted range.
+    /// The two orders measured from the changes, coarse pair first (not finite when a
+    /// change is zero).
+    pub observed_orders: [f64; 2],
+    /// The scheme's formal order, the cap of the order used.
+    pub formal_order: f64,
+    /// The order used: the smaller observed order capped at the formal one; NaN when the
+    /// order is not established.
     pub order: f64,
     /// Refinement ratio between successive meshes.
     pub ratio: f64,
-    /// Estimated error of the finest result (in the changes' norm): d2 / (r^p - 1).
+    /// Estimated error of the finest result (in the changes' norm): d3 / (r^p - 1); NaN
+    /// when the order is not established.
     pub finest_error: f64,
 }
 
 impl Richardson {
-    /// From the changes `d_coarse` (coarse to medium) and `d_fine` (medium to finest) on meshes
-    /// refined by `ratio`, with the order clamped to `[min_order, max_order]` (a change that
-    /// does not fall keeps `min_order`: the estimate is then conservative, not asymptotic).
-    pub fn new(d_coarse: f64, d_fine: f64, ratio: f64, min_order: f64, max_order: f64) -> Self {
-        let observed = observed_order(d_coarse, d_fine, ratio);
-        let order = if observed.is_nan() {
-            min_order
+    /// From the changes `[d1, d2, d3]` between four meshes refined by `ratio` (> 1) each,
+    /// coarse first, of a scheme of formal order `formal_order`.
+    pub fn from_changes(changes: [f64; 3], ratio: f64, formal_order: f64) -> Self {
+        let [d1, d2, d3] = changes;
+        let observed = [observed_order(d1, d2, ratio), observed_order(d2, d3, ratio)];
+        let established = observed.iter().all(|p| p.is_finite() && *p > 0.0)
+            && (observed[0] - observed[1]).abs() <= ORDER_AGREEMENT;
+        let order = if established {
+            observed[0].min(observed[1]).min(formal_order)
         } else {
-            observed.clamp(min_order, max_order)
+            f64::NAN
         };
         Richardson {
-            observed_order: observed,
+            observed_orders: observed,
+            formal_order,
             order,
             ratio,
-            finest_error: d_fine / (ratio.powf(order) - 1.0),
+            finest_error: d3 / (ratio.powf(order) - 1.0),
         }
     }
 
-    /// Whether the observed order lies in the accepted range (the meshes are in the
-    /// asymptotic range and the extrapolation is a small, trustworthy correction).
-    pub fn asymptotic(&self) -> bool {
-        (self.observed_order - self.order).abs() <= 1e-12 * self.order.abs().max(1.0)
+    /// Whether the order is established (two estimates that agree): only then is
+    /// [`Richardson::finest_error`] an estimate and [`Richardson::limit`] available.
+    pub fn established(&self) -> bool {
+        self.order.is_finite()
     }
 
-    /// The extrapolated limit of each component from the `medium` and `finest` results:
-    /// finest + (finest - medium) / (r^p - 1).
-    pub fn limit(&self, medium: &[f64], finest: &[f64]) -> Vec<f64> {
+    /// Whether the order used is the formal one, both observed orders above it.
+    pub fn capped(&self) -> bool {
+        self.established() && self.observed_orders.iter().all(|p| *p > self.formal_order)
+    }
+
+    /// The extrapolated limit of each component from the `medium` and `finest` results
+    /// (the two finest meshes): finest + (finest - medium) / (r^p - 1); `None` when the
+    /// order is not established.
+    pub fn limit(&self, medium: &[f64], finest: &[f64]) -> Option<Vec<f64>> {
         assert_eq!(medium.len(), finest.len(), "results of different sizes");
+        if !self.established() {
+            return None;
+        }
         let f = 1.0 / (self.ratio.powf(self.order) - 1.0);
-        medium
-            .iter()
-            .zip(finest)
-            .map(|(m, u)| u + (u - m) * f)
-            .collect()
+        Some(
+            medium
+                .iter()
+                .zip(finest)
+                .map(|(m, u)| u + (u - m) * f)
+                .collect(),
+        )
     }
 }
 
@@ -134,34 +168,56 @@ pub fn cost_to_reach(runs: &[(f64, f64)], target: f64) -> Reach {
 mod tests {
     use super::*;
 
-    /// A sequence u(h) = 1 + 3 h^2 (+ nothing else): the order is 2 and the limit exact.
+    /// A sequence u(h) = 1 + 3 h^2 (+ nothing else): both orders are 2 and the limit exact.
     #[test]
     fn richardson_recovers_a_power_law() {
         let u = |h: f64| [1.0 + 3.0 * h * h, -2.0 + 0.5 * h * h];
-        let (a, b, c) = (u(0.4), u(0.2), u(0.1));
         let d = |x: [f64; 2], y: [f64; 2]| (x[0] - y[0]).hypot(x[1] - y[1]);
-        let r = Richardson::new(d(a, b), d(b, c), 2.0, 1.0, 4.0);
-        assert!((r.observed_order - 2.0).abs() < 1e-12);
-        assert!(r.asymptotic());
-        let l = r.limit(&b, &c);
+        let h = [0.8, 0.4, 0.2, 0.1].map(u);
+        let changes = [d(h[0], h[1]), d(h[1], h[2]), d(h[2], h[3])];
+        let r = Richardson::from_changes(changes, 2.0, 2.0);
+        assert!(r.observed_orders.iter().all(|p| (p - 2.0).abs() < 1e-12));
+        assert!(r.established() && (r.order - 2.0).abs() < 1e-12);
+        let l = r.limit(&h[2], &h[3]).unwrap();
         assert!((l[0] - 1.0).abs() < 1e-12 && (l[1] + 2.0).abs() < 1e-12);
-        assert!((r.finest_error - d(c, [1.0, -2.0])).abs() < 1e-12);
+        assert!((r.finest_error - d(h[3], [1.0, -2.0])).abs() < 1e-12);
         // Ratio 3: the same order.
-        let r3 = Richardson::new(d(u(0.9), u(0.3)), d(u(0.3), u(0.1)), 3.0, 1.0, 4.0);
-        assert!((r3.observed_order - 2.0).abs() < 1e-12);
+        let h = [2.7, 0.9, 0.3, 0.1].map(u);
+        let r3 = Richardson::from_changes([d(h[0], h[1]), d(h[1], h[2]), d(h[2], h[3])], 3.0, 4.0);
+        assert!((r3.order - 2.0).abs() < 1e-12 && !r3.capped());
     }
 
-    /// An order outside the range is clamped and flagged; a change that does not fall keeps
-    /// the smallest order.
+    /// An observed order above the formal one is capped: the estimated error is then larger
+    /// than the observed order would make it (a fourth-order cancellation in a second-order
+    /// scheme is not counted on).
     #[test]
-    fn richardson_clamps_the_order() {
-        let r = Richardson::new(1.0, 0.01, 2.0, 1.0, 4.0);
-        assert_eq!(r.order, 4.0);
-        assert!(!r.asymptotic());
-        let r = Richardson::new(1.0, 1.5, 2.0, 1.0, 4.0);
-        assert_eq!(r.order, 1.0);
-        assert!((r.finest_error - 1.5).abs() < 1e-15);
-        assert_eq!(Richardson::new(0.0, 0.0, 2.0, 1.0, 4.0).order, 1.0);
+    fn richardson_caps_the_order_at_the_formal_one() {
+        let r = Richardson::from_changes([16.0, 1.0, 1.0 / 16.0], 2.0, 2.0);
+        assert!((r.observed_orders[0] - 4.0).abs() < 1e-12);
+        assert_eq!(r.order, 2.0);
+        assert!(r.capped());
+        assert!((r.finest_error - 1.0 / 48.0).abs() < 1e-15);
+    }
+
+    /// Orders that do not agree (falling 1.57 -> 1.33 is within a quarter; 2 -> 1 is not),
+    /// changes that grow, or a zero change: no order is established, nothing extrapolates.
+    #[test]
+    fn richardson_needs_two_orders_that_agree() {
+        let falling = [2f64.powf(1.57) * 2f64.powf(1.33), 2f64.powf(1.33), 1.0];
+        let r = Richardson::from_changes(falling, 2.0, 2.0);
+        assert!(r.established());
+        assert!((r.order - 1.33).abs() < 1e-12, "the smaller order: {r:?}");
+        for changes in [
+            [4.0, 1.0, 0.5],
+            [1.0, 1.5, 2.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 0.5, 0.0],
+        ] {
+            let r = Richardson::from_changes(changes, 2.0, 2.0);
+            assert!(!r.established(), "{changes:?}: {r:?}");
+            assert!(r.finest_error.is_nan());
+            assert_eq!(r.limit(&[0.0], &[1.0]), None);
+        }
     }
 
     /// Error e = cost^-2 on every run: the interpolated cost to reach a target is exact.

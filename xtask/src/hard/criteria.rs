@@ -24,6 +24,10 @@ pub struct Limit {
     pub min: Option<f64>,
     /// Why the limit is what it is.
     pub why: String,
+    /// Set when the claim is not established (it holds at the case's discretisation but not
+    /// under refinement): why. The row is then reported as open, neither pass nor fail.
+    #[serde(default)]
+    pub open: Option<String>,
 }
 
 impl Limit {

@@ -1,7 +1,7 @@
 //! Converged references and the distances to them. A run is sampled on the scene's common
-//! grid (statics: stations along the strand; dynamics: the output times), three runs of a
-//! refinement sequence are extrapolated to their limit (Richardson,
-//! [`strand_core::convergence`]), and a run's error is its largest distance to a limit: in
+//! grid (statics: stations along the strand; dynamics: the output times), the last of a refinement sequence are extrapolated to their limit (Richardson,
+//! [`strand_core::convergence`]: two order estimates that agree, capped at the formal order),
+//! and a run's error is its largest distance to a limit: in
 //! statics at the run's own centreline points (the limit interpolated between its dense
 //! stations), in dynamics the tip at the output times.
 
@@ -11,10 +11,6 @@ use strand_core::convergence::Richardson;
 
 use super::metrics::Tip;
 use crate::validate::results::Centerline;
-
-/// Smallest and largest order accepted for the extrapolation (the fine model's observed
-/// order in segments per pitch is about 1.7-2.2; the beams' 2-4).
-pub const ORDERS: (f64, f64) = (1.0, 4.0);
 
 /// Where runs are sampled.
 #[derive(Debug, Clone, PartialEq)]
@@ -96,37 +92,45 @@ pub fn max_distance(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
 /// The limit of a refinement sequence.
 #[derive(Debug, Clone)]
 pub struct Converged {
-    /// The limit on the grid (m).
+    /// The limit on the grid (m): extrapolated when the order is established, else the
+    /// finest run.
     pub grid: Vec<[f64; 3]>,
-    /// The extrapolation: observed order and the finest run's estimated error.
+    /// The extrapolation: the two observed orders and the order used.
     pub richardson: Richardson,
-    /// Largest changes coarse to medium and medium to finest (m).
-    pub changes: (f64, f64),
-    /// The three runs it comes from, coarse to finest.
-    pub runs: [String; 3],
+    /// The finest run's error (m): Richardson's estimate when the order is established,
+    /// else its last change (an estimate only if the sequence converges at order 1 or more).
+    pub finest_error: f64,
+    /// Largest changes between successive runs, coarse first (m).
+    pub changes: [f64; 3],
+    /// The four runs it comes from, coarse to finest.
+    pub runs: [String; 4],
 }
 
 impl Converged {
-    /// The limit of three runs refined by `ratio` each, coarse to finest.
-    pub fn new(runs: [(&str, &Sampled); 3], ratio: f64) -> Converged {
-        let [a, b, c] = runs.map(|r| r.1);
-        let d1 = max_distance(&a.grid, &b.grid);
-        let d2 = max_distance(&b.grid, &c.grid);
-        let mut richardson = Richardson::new(d1, d2, ratio, ORDERS.0, ORDERS.1);
+    /// The limit of four runs refined by `ratio` each, coarse to finest, of a scheme of
+    /// formal order `formal_order`.
+    pub fn new(runs: [(&str, &Sampled); 4], ratio: f64, formal_order: f64) -> Converged {
+        let [a, b, c, d] = runs.map(|r| r.1);
+        let changes = [
+            max_distance(&a.grid, &b.grid),
+            max_distance(&b.grid, &c.grid),
+            max_distance(&c.grid, &d.grid),
+        ];
+        let richardson = Richardson::from_changes(changes, ratio, formal_order);
         let flat = |s: &Sampled| s.grid.iter().flatten().copied().collect::<Vec<f64>>();
-        // Changes that do not fall are not a power law: the finest run stands, with its last
-        // change as its error.
-        let grid = if richardson.observed_order.is_nan() || richardson.observed_order < ORDERS.0 {
-            richardson.finest_error = d2;
-            c.grid.clone()
-        } else {
-            let limit = richardson.limit(&flat(b), &flat(c));
-            limit.chunks(3).map(|p| [p[0], p[1], p[2]]).collect()
+        let (grid, finest_error) = match richardson.limit(&flat(c), &flat(d)) {
+            Some(limit) => (
+                limit.chunks(3).map(|p| [p[0], p[1], p[2]]).collect(),
+                richardson.finest_error,
+            ),
+            // Orders that do not agree are not a power law: the finest run stands.
+            None => (d.grid.clone(), changes[2]),
         };
         Converged {
             grid,
             richardson,
-            changes: (d1, d2),
+            finest_error,
+            changes,
             runs: runs.map(|r| r.0.to_string()),
         }
     }
@@ -152,44 +156,33 @@ impl Converged {
         }
     }
 
-    /// Whether the limit is extrapolated (the changes fall at an order in [`ORDERS`] or
-    /// faster); otherwise it is the finest run.
+    /// Whether the limit is extrapolated (the order is established); otherwise it is the
+    /// finest run.
     pub fn extrapolated(&self) -> bool {
-        !(self.richardson.observed_order.is_nan() || self.richardson.observed_order < ORDERS.0)
+        self.richardson.established()
     }
 
     /// One sentence: where the limit comes from and how good the finest run is.
     pub fn describe(&self) -> String {
         let r = &self.richardson;
+        let [p1, p2] = r.observed_orders;
+        let [d1, d2, d3] = self.changes;
+        let runs = self.runs.join(", ");
         if !self.extrapolated() {
             return format!(
-                "the finest of {}, {}, {} (largest changes {:.2e}, {:.2e} m do not fall as a \
-                 power law, observed order {:.2}: not extrapolated); its error taken as the \
-                 last change, {:.1e} m",
-                self.runs[0],
-                self.runs[1],
-                self.runs[2],
-                self.changes.0,
-                self.changes.1,
-                r.observed_order,
-                r.finest_error
+                "the finest of {runs} (largest changes {d1:.2e}, {d2:.2e}, {d3:.2e} m, observed \
+                 orders {p1:.2}, {p2:.2}: they do not agree, not extrapolated); its error taken \
+                 as the last change, {:.1e} m",
+                self.finest_error
             );
         }
         format!(
-            "Richardson extrapolation of {}, {}, {} (largest changes {:.2e}, {:.2e} m, \
-             observed order {:.2}{}); the finest run's estimated error {:.1e} m",
-            self.runs[0],
-            self.runs[1],
-            self.runs[2],
-            self.changes.0,
-            self.changes.1,
-            r.observed_order,
-            if r.asymptotic() {
-                String::new()
-            } else {
-                format!(", used {:.2}", r.order)
-            },
-            r.finest_error
+            "Richardson extrapolation of {runs} (largest changes {d1:.2e}, {d2:.2e}, {d3:.2e} m, \
+             observed orders {p1:.2}, {p2:.2}, used {:.2}{}); the finest run's estimated error \
+             {:.1e} m",
+            r.order,
+            if r.capped() { ", the formal order" } else { "" },
+            self.finest_error
         )
     }
 }
@@ -222,28 +215,31 @@ mod tests {
         let grid = Grid::stations(1.0, 40);
         let exact = |s: f64| [s, -0.1 * s * s, 0.0];
         let run = |h: f64| sampled(&grid, move |s| [s, -0.1 * s * s + h * h * s, 0.0]);
-        let (a, b, c) = (run(0.2), run(0.1), run(0.05));
-        let conv = Converged::new([("a", &a), ("b", &b), ("c", &c)], 2.0);
-        assert!((conv.richardson.observed_order - 2.0).abs() < 1e-9);
+        let (z, a, b, c) = (run(0.4), run(0.2), run(0.1), run(0.05));
+        let conv = Converged::new([("z", &z), ("a", &a), ("b", &b), ("c", &c)], 2.0, 2.0);
+        assert!((conv.richardson.order - 2.0).abs() < 1e-9);
         let e = sampled(&grid, exact);
         assert!(max_distance(&conv.grid, &e.grid) < 1e-12);
         assert!((conv.distance(&grid, &a) - 0.04).abs() < 1e-12);
-        assert!((conv.richardson.finest_error - 0.05f64.powi(2)).abs() < 1e-12);
-        assert!(conv.describe().contains("observed order 2.00"));
+        assert!((conv.finest_error - 0.05f64.powi(2)).abs() < 1e-12);
+        assert!(conv.describe().contains("observed orders 2.00, 2.00"));
     }
 
-    /// Changes that grow are not extrapolated: the finest run stands, its error the last
-    /// change.
+    /// Changes that grow, or fall at orders that do not agree, are not extrapolated: the
+    /// finest run stands, its error the last change.
     #[test]
-    fn no_extrapolation_without_convergence() {
+    fn no_extrapolation_without_an_established_order() {
         let grid = Grid::stations(1.0, 10);
         let run = |e: f64| sampled(&grid, move |s| [s, e * s, 0.0]);
-        let (a, b, c) = (run(0.0), run(1e-3), run(3e-3));
-        let conv = Converged::new([("a", &a), ("b", &b), ("c", &c)], 2.0);
-        assert!(!conv.extrapolated());
-        assert_eq!(conv.grid, c.grid);
-        assert!((conv.richardson.finest_error - 2e-3).abs() < 1e-15);
-        assert!(conv.describe().contains("not extrapolated"));
+        // Growing changes, then changes falling at orders 3 and 1.
+        for es in [[0.0, 1e-3, 3e-3, 7e-3], [0.0, 8e-3, 9e-3, 9.5e-3]] {
+            let [z, a, b, c] = es.map(run);
+            let conv = Converged::new([("z", &z), ("a", &a), ("b", &b), ("c", &c)], 2.0, 2.0);
+            assert!(!conv.extrapolated());
+            assert_eq!(conv.grid, c.grid);
+            assert!((conv.finest_error - (es[3] - es[2])).abs() < 1e-15);
+            assert!(conv.describe().contains("not extrapolated"));
+        }
     }
 
     #[test]

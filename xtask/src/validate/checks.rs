@@ -257,11 +257,17 @@ pub fn energy_balance(
                 ("fine", Some(f)) => f,
                 _ => tol.relative,
             };
-            Row::measured(scene, CHECK, model, rel, "", Bound::AtMost(limit)).with_note(format!(
-                "{frames:.2e} over the output frames, {every_step:.2e} over every step; \
+            let row = Row::measured(scene, CHECK, model, rel, "", Bound::AtMost(limit)).with_note(
+                format!(
+                    "{frames:.2e} over the output frames, {every_step:.2e} over every step; \
                      dissipated {:.3e} J",
-                e.last()[3]
-            ))
+                    e.last()[3]
+                ),
+            );
+            match &tol.open {
+                Some(o) if o.models.iter().any(|m| m == model) => row.opened(&o.why),
+                _ => row,
+            }
         }
         Err(e) => Row::failed(scene, CHECK, model, format!("{e:#}")),
     }

@@ -31,6 +31,12 @@ pub enum Status {
     Fail,
     /// The check cannot run in this version: neither pass nor fail.
     NotAvailable,
+    /// A claim the check does not establish (it holds at the chosen discretisation but not
+    /// under refinement, or its limit has no argument yet): measured and shown against its
+    /// limit, neither pass nor fail.
+    Open,
+    /// A value reported without a limit: neither pass nor fail.
+    Reported,
 }
 
 impl Status {
@@ -39,6 +45,8 @@ impl Status {
             Status::Pass => "pass",
             Status::Fail => "FAIL",
             Status::NotAvailable => "not available",
+            Status::Open => "open",
+            Status::Reported => "reported",
         }
     }
 }
@@ -85,6 +93,11 @@ impl Row {
                 Bound::AtLeast(t) => value >= t,
                 Bound::None => true,
             };
+        let status = match (ok, bound) {
+            (false, _) => Status::Fail,
+            (true, Bound::None) => Status::Reported,
+            (true, _) => Status::Pass,
+        };
         Row {
             scene: scene.into(),
             check: check.into(),
@@ -92,7 +105,7 @@ impl Row {
             value: Some(value),
             unit,
             bound,
-            status: if ok { Status::Pass } else { Status::Fail },
+            status,
             note: String::new(),
             why: String::new(),
             margin: margin(value, bound),
@@ -129,6 +142,28 @@ impl Row {
             status: Status::NotAvailable,
             ..Row::failed(scene, check, "-", why)
         }
+    }
+
+    /// The same measurement reported as an open claim (`why` says why it is not established):
+    /// neither a pass nor a failure, whichever side of its limit the value lies. The note
+    /// says which side that is.
+    pub fn opened(mut self, why: &str) -> Row {
+        if self.status == Status::NotAvailable {
+            return self;
+        }
+        let side = match self.status {
+            Status::Pass => "within its limit here",
+            Status::Fail => "outside its limit here",
+            _ => "",
+        };
+        self.note = [self.note.as_str(), &format!("open ({side}): {why}")]
+            .iter()
+            .filter(|s| !s.is_empty())
+            .copied()
+            .collect::<Vec<_>>()
+            .join("; ");
+        self.status = Status::Open;
+        self
     }
 
     /// Adds a note.
@@ -223,6 +258,10 @@ pub struct Counts {
     pub fail: usize,
     /// Rows not available in this version.
     pub not_available: usize,
+    /// Rows whose claim is open (measured, neither pass nor fail).
+    pub open: usize,
+    /// Values reported without a limit.
+    pub reported: usize,
 }
 
 /// The whole validation result.
@@ -255,6 +294,8 @@ impl Report {
                 Status::Pass => counts.pass += 1,
                 Status::Fail => counts.fail += 1,
                 Status::NotAvailable => counts.not_available += 1,
+                Status::Open => counts.open += 1,
+                Status::Reported => counts.reported += 1,
             }
         }
         Report {
@@ -357,12 +398,15 @@ impl Report {
             .collect()
     }
 
-    /// `N passed, M failed, K not available (T s)`.
+    /// `N passed, M failed, O open, R reported, K not available (T s)`: open claims and
+    /// reported values are neither passes nor failures.
     pub fn summary_line(&self) -> String {
         format!(
-            "{} passed, {} failed, {} not available ({:.1} s{})",
+            "{} passed, {} failed, {} open, {} reported, {} not available ({:.1} s{})",
             self.counts.pass,
             self.counts.fail,
+            self.counts.open,
+            self.counts.reported,
             self.counts.not_available,
             self.wall_time_s,
             if self.quick { ", --quick" } else { "" }
@@ -463,5 +507,35 @@ mod tests {
             Row::not_available("s", "c", "why").status,
             Status::NotAvailable
         );
+        assert_eq!(
+            Row::measured("s", "c", "m", 1.0, "m", Bound::None).status,
+            Status::Reported
+        );
+    }
+
+    /// An open claim is neither a pass nor a failure on either side of its limit, and the
+    /// counts keep it apart.
+    #[test]
+    fn open_claims_are_not_passes() {
+        let inside = Row::measured("s", "c", "m", 1.0, "m", Bound::AtMost(2.0)).opened("why");
+        let outside = Row::measured("s", "c", "m", 3.0, "m", Bound::AtMost(2.0)).opened("why");
+        assert_eq!(
+            (inside.status, outside.status),
+            (Status::Open, Status::Open)
+        );
+        assert!(inside.note.contains("within") && outside.note.contains("outside"));
+        let r = Report::new(
+            Provenance::detect(std::path::Path::new(".")),
+            true,
+            0.0,
+            vec![
+                inside,
+                outside,
+                Row::measured("s", "c", "m", 1.0, "m", Bound::None),
+            ],
+        );
+        assert_eq!((r.counts.pass, r.counts.fail, r.counts.open), (0, 0, 2));
+        assert_eq!(r.counts.reported, 1);
+        assert!(!r.failed());
     }
 }
