@@ -9,6 +9,7 @@ use validate::report::{Report, Row};
 mod bench_peers;
 mod bonded;
 mod book;
+mod conductor;
 mod hard;
 mod paper;
 mod pareto;
@@ -60,6 +61,10 @@ enum Task {
     /// are not the paper's, each converged in segments per pitch; target/stiffness/. Fails on
     /// any failed check.
     Stiffness(stiffness::StiffnessArgs),
+    /// The equivalent section law of Cardinal ACSR 54/7 against its measured moment-curvature
+    /// curve at 40 kN (validation/conductor/), beside the classical analytic models, at the
+    /// literature friction coefficient and at the best-fitting one; target/conductor/.
+    Conductor(conductor::ConductorArgs),
 }
 
 fn main() -> anyhow::Result<()> {
@@ -73,6 +78,7 @@ fn main() -> anyhow::Result<()> {
         Task::Stiffness(args) => stiffness_and_exit(&args),
         Task::Bonded(args) => bonded_and_exit(&args),
         Task::Book(args) => book::run(&args),
+        Task::Conductor(args) => conductor::run(&args),
     }
 }
 

@@ -9,7 +9,7 @@
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
-use strand_core::SectionLaw;
+use strand_core::{SectionLaw, Station};
 
 use crate::output::Csv;
 use crate::run::record::{RunError, io_err};
@@ -87,15 +87,7 @@ pub fn run_law_bending(
     }
     let law = SectionLaw::with_options(strand, scene.law, &scene.section);
     let eps = opts.tension / law.axial_stiffness();
-    let pitch = strand
-        .layers()
-        .iter()
-        .map(|l| l.pitch)
-        .reduce(f64::max)
-        .unwrap_or(strand.length());
-    let stations: Vec<_> = (0..STATIONS)
-        .map(|i| law.station(pitch * (i as f64 + 0.5) / STATIONS as f64))
-        .collect();
+    let stations = stations(&law);
     let amplitude = match opts.amplitude {
         Some(a) if a.is_finite() && a > 0.0 => a,
         Some(a) => return Err(invalid(format!("--amplitude must be positive, got {a}"))),
@@ -160,6 +152,56 @@ pub fn run_law_bending(
     };
     write_json(&opts.out.join("law-summary.json"), &summary)?;
     Ok(summary)
+}
+
+/// The law's stations, evenly spaced over the longest pitch (the strand's length for a plain
+/// wire).
+fn stations(law: &SectionLaw) -> Vec<Station> {
+    let strand = law.strand();
+    let pitch = strand
+        .layers()
+        .iter()
+        .map(|l| l.pitch)
+        .reduce(f64::max)
+        .unwrap_or(strand.length());
+    (0..STATIONS)
+        .map(|i| law.station(pitch * (i as f64 + 0.5) / STATIONS as f64))
+        .collect()
+}
+
+/// The section law's moment on first loading (N m) at each of `curvatures` (1/m, positive and
+/// rising) under the tension `tension` (N): the strand is bent from straight and unslipped
+/// through the points, in `substeps` equal steps up to each, and the moment averaged over the
+/// stations of the longest pitch, as [`run_law_bending`] averages it. What a bending test of a
+/// measured curve compares with.
+pub fn loading_moments(
+    law: &SectionLaw,
+    tension: f64,
+    curvatures: &[f64],
+    substeps: usize,
+) -> Vec<f64> {
+    let eps = tension / law.axial_stiffness();
+    let stations = stations(law);
+    let mut slips: Vec<Vec<f64>> = vec![vec![0.0; law.state_len()]; stations.len()];
+    let mut trial = vec![0.0; law.state_len()];
+    let substeps = substeps.max(1);
+    let mut last = 0.0;
+    let mut out = Vec::with_capacity(curvatures.len());
+    for &k in curvatures {
+        let mut m = 0.0;
+        for s in 1..=substeps {
+            let at = last + (k - last) * s as f64 / substeps as f64;
+            m = 0.0;
+            for (st, slip) in stations.iter().zip(&mut slips) {
+                let r = law.planar(st, eps, at, slip, &mut trial);
+                slip.copy_from_slice(&trial);
+                m += r.moment;
+            }
+        }
+        out.push(m / stations.len() as f64);
+        last = k;
+    }
+    out
 }
 
 fn write_json(path: &Path, value: &impl Serialize) -> Result<(), RunError> {

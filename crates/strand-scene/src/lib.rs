@@ -16,7 +16,7 @@ pub mod section_batch;
 mod selection;
 
 pub use bending::{BendingOptions, BendingSummary, run_bending};
-pub use law_bending::{LawBendingOptions, LawBendingSummary, run_law_bending};
+pub use law_bending::{LawBendingOptions, LawBendingSummary, loading_moments, run_law_bending};
 pub use run::{
     BeamModelKind, Failure, RunError, RunOptions, RunSummary, build_beam, dynamic_options,
     run_scene,

@@ -62,3 +62,42 @@ fn the_loop_area_is_the_slip_work() {
         s.dissipated
     );
 }
+
+/// `loading_moments`, the first-loading curve at given curvatures: at the loading branch's
+/// curvatures of `run_law_bending` it gives the same moments; on first loading every wire is
+/// an elastic-perfectly-plastic slider with a fixed limit, whose force depends on the
+/// curvature reached and not on the steps taken to it, so the load steps change nothing but
+/// round-off; past the largest critical curvature every wire slips at its fixed limit and
+/// the tangent is K_min.
+#[test]
+fn loading_moments_first_loading() {
+    let scene = Scene::parse(SCENE).unwrap();
+    let law = strand_core::SectionLaw::with_options(&scene.strand, scene.law, &scene.section);
+    let out = std::env::temp_dir().join(format!("strand-law-loading-{}", std::process::id()));
+    let (tension, steps) = (1e4, 40);
+    let s = run_law_bending(
+        &scene,
+        &LawBendingOptions {
+            tension,
+            amplitude: None,
+            steps,
+            out: out.clone(),
+        },
+    )
+    .unwrap();
+    std::fs::remove_dir_all(&out).ok();
+    let kappa: Vec<f64> = s.points[1..=steps].iter().map(|p| p[0]).collect();
+    let m1 = strand_scene::loading_moments(&law, tension, &kappa, 1);
+    for (m, p) in m1.iter().zip(&s.points[1..=steps]) {
+        assert_eq!(*m, p[1], "at kappa {}", p[0]);
+    }
+    let m7 = strand_scene::loading_moments(&law, tension, &kappa, 7);
+    for (a, b) in m1.iter().zip(&m7) {
+        assert!((a - b).abs() <= 1e-12 * a.abs(), "{a} vs {b}");
+    }
+    // The amplitude is three times the largest critical curvature: the last third slips.
+    let (k1, k2) = (kappa[steps - 2], kappa[steps - 1]);
+    let slope = (m1[steps - 1] - m1[steps - 2]) / (k2 - k1);
+    let k_min = law.base_bending_stiffness();
+    assert!((slope / k_min - 1.0).abs() < 1e-9, "{slope} vs {k_min}");
+}
