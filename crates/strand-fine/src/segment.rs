@@ -198,8 +198,13 @@ impl Segment {
         let h1 = n.dot(h);
         let spin = dt * h1 * (1.0 / self.axial_inertia - 1.0 / self.transverse_inertia);
         let world = crate::so3::exp(&(h * (dt / self.transverse_inertia)));
-        let body = crate::so3::exp(&Vector3::new(spin, 0.0, 0.0));
-        let mut q = world * rotation * body;
+        // An isotropic body (equal inertias) does not spin relative to the world turn: skip
+        // the identity (the same result bit for bit).
+        let mut q = if spin == 0.0 {
+            world * rotation
+        } else {
+            world * rotation * crate::so3::exp(&Vector3::new(spin, 0.0, 0.0))
+        };
         q.renormalize();
         q
     }

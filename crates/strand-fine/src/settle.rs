@@ -32,6 +32,23 @@
 //! four times the segments' axial inertia by 2e-6 m: the motion of the strand as a whole sets
 //! the result, not the fast motions of its contacts.
 //!
+//! The motion need not be the strand's own: the static state does not depend on the masses
+//! and inertias, only the load path does. The settle gives every segment its transverse
+//! moment of inertia about its own axis too ([`SettleOptions::isotropic_inertia`]): the spin
+//! of a segment about its axis under the contacts' tangential springs at the wire's surface
+//! is otherwise the fastest motion, and with it gone the stable step of the Fig. 7 strand
+//! (77 segments per wire) grows 1.32 times; at 0.9 of it instead of 0.75 the settle takes
+//! 1.56-1.58 times fewer steps at g = 8, 10, 12 (276,300, 244,600, 225,400). The tip lands
+//! 2.2e-6, 2.2e-6, 1.7e-6 m from that of the strand's own inertia at 0.75, every state
+//! polished by Newton to its tolerance: the friction's path dependence, up to about twice
+//! what a change of the step alone gives (0.75 to 0.7: 6.5e-7, 4.9e-7 m at g = 8, 10; 1.73
+//! to 5.46 us: up to 1.3e-6 m).
+//!
+//! Newton cannot take over much earlier: on the Fig. 7 strand under g = 8, from the states
+//! where the residual had fallen to 945, 297, 97, 29, 9.3 and 2.9 times the settle's
+//! allowance, Newton with the histories frozen stalled every time (40 iterations, scaled
+//! residual 0.03-7); it converges from the settled state or after the retries' motion.
+//!
 //! Newton from the settled state (the contact histories of the settled state frozen) most
 //! often converges, but it can stall where most closed contacts sit at the slip limit, as
 //! they do at rest. The settled state is then about 1e-5 m from the equilibrium the motion
@@ -64,8 +81,10 @@ pub struct SettleOptions {
     /// [`crate::dynamics::MOTION_FACTOR`] does not apply: omega_max is that of contacts closed
     /// at their stiffer (tangential) spring in every direction, above the strand's, and the
     /// damped settle of the Table 1 strand ran stable to 1.0 (20 and 77 segments per wire);
-    /// default 0.75. A settle that turns non-finite is run again from rest at 0.54 (the
-    /// dynamic runs' 0.9 x 0.6).
+    /// default 0.9. At 1.0 the fastest mode is barely damped: the Fig. 7 strand under g = 8
+    /// (77 segments per wire) took 3.57 s of motion to rest instead of 2.36 s at 0.75, and
+    /// 2.31 s at 0.9 (with the axial inertia four times its value: 4.14 s at 1.0). A settle
+    /// that turns non-finite is run again from rest at 0.54 (the dynamic runs' 0.9 x 0.6).
     pub safety: f64,
     /// Simulated time allowed (s).
     pub max_time: f64,
@@ -77,6 +96,14 @@ pub struct SettleOptions {
     pub tolerance: f64,
     /// Steps between residual checks.
     pub check_every: usize,
+    /// The motion gives every segment its transverse moment of inertia about its own axis
+    /// too (isotropic rotational inertia) instead of `m r^2 / 2`: the static state does not
+    /// depend on the inertia, and the spin of a segment about its axis under the contacts'
+    /// tangential springs at the wire's surface is the model's fastest motion (on the Fig. 7
+    /// strand, 77 segments per wire, the settle's stable step grows from 7.28e-6 to about
+    /// 9.6e-6 s; the axial inertia four or eight times its value gives 9.62e-6 and
+    /// 9.65e-6 s, so the spin no longer sets it). Default true.
+    pub isotropic_inertia: bool,
 }
 
 impl Default for SettleOptions {
@@ -85,11 +112,12 @@ impl Default for SettleOptions {
             damping_rate: None,
             ramp_time: None,
             time_step: None,
-            safety: 0.75,
+            safety: 0.9,
             max_time: 60.0,
             max_steps: None,
             tolerance: 1e-4,
             check_every: 100,
+            isotropic_inertia: true,
         }
     }
 }
@@ -289,6 +317,24 @@ const LANCZOS_STEPS: usize = 100;
 /// Fraction of the linear stability limit for a settle run again after turning non-finite.
 const FALLBACK_SAFETY: f64 = 0.9 * crate::dynamics::MOTION_FACTOR;
 
+/// The model the settle's motion moves: `model`, with every segment's axial moment of
+/// inertia raised to its transverse one if `options.isotropic_inertia` (loads, masses and
+/// the static state are the model's own). The settle's default step is
+/// [`settle_time_step`] of this model.
+pub fn motion_model<'a>(
+    model: &'a FineModel,
+    options: &SettleOptions,
+) -> std::borrow::Cow<'a, FineModel> {
+    if !options.isotropic_inertia {
+        return std::borrow::Cow::Borrowed(model);
+    }
+    let mut m = model.clone();
+    for seg in m.wires.iter_mut().flat_map(|w| w.chain.segments.iter_mut()) {
+        seg.axial_inertia = seg.transverse_inertia;
+    }
+    std::borrow::Cow::Owned(m)
+}
+
 /// Starts the damped motion of `options` at `state` and runs it until settled; a motion
 /// at the default step that turns non-finite is run again from the start state at the
 /// fallback step.
@@ -357,7 +403,8 @@ pub fn settle(
     options: &SettleOptions,
     progress: &mut dyn FnMut(&ModelState, f64, f64),
 ) -> Result<SettleReport, SettleError> {
-    settle_motion(model, state, options, progress).map(|(_, report)| report)
+    let model = motion_model(model, options);
+    settle_motion(&model, state, options, progress).map(|(_, report)| report)
 }
 
 /// Controls of [`solve_settled`].
@@ -424,7 +471,8 @@ pub fn solve_settled(
     options: &SettledOptions,
     progress: &mut dyn FnMut(&ModelState, f64, f64),
 ) -> Result<SettledReport, SettleError> {
-    let (mut motion, mut settled) = settle_motion(model, state, &options.settle, progress)?;
+    let moving = motion_model(model, &options.settle);
+    let (mut motion, mut settled) = settle_motion(&moving, state, &options.settle, progress)?;
     let give_up = settled.time + options.retry_time;
     let mut saved = state.clone();
     let (mut attempts, mut iterations) = (0, 0);
@@ -466,7 +514,7 @@ pub fn solve_settled(
         }
         // The motion goes on from the state it stopped at (momenta included).
         let until = motion.int.time + options.retry_interval;
-        let (_, ratio, residual) = motion.run(model, state, until, budget, progress)?;
+        let (_, ratio, residual) = motion.run(&moving, state, until, budget, progress)?;
         settled = SettleReport {
             discarded_steps: settled.discarded_steps,
             ..motion.report(ratio, residual)

@@ -314,8 +314,9 @@ fn the_fine_settling_stops_at_the_step_limit_and_keeps_its_state() {
     assert_clean(&out);
 }
 
-/// The fine model's static settling steps at the settle's own step, 0.75 x 2 / omega_max
-/// with omega_max the Lanczos estimate at rest (every contact closed and stuck), as
+/// The fine model's static settling steps at the settle's own step, safety x 2 / omega_max
+/// with omega_max the Lanczos estimate at rest (every contact closed and stuck) of the
+/// settle's motion model (isotropic rotational inertia), as
 /// `strand_fine::settle` does, not at the dynamic runs' step from the Gershgorin bound (which
 /// the runner took from 24 Nov 2026 to turn the step limit into a time, a step 3.2 times
 /// shorter on the Fig. 7 strand); and the motion at that step stays finite (no rerun at the
@@ -346,12 +347,15 @@ fn the_fine_settling_steps_at_the_lanczos_step() {
         ..fine::ContactOptions::default()
     };
     model.add_contacts(&parsed.strand, &contact);
-    let omega = fine::spectrum::lanczos_highest_frequency(&model, &model.rest_state(), 100).omega;
+    let settle = fine::SettleOptions::default();
+    let moving = fine::settle::motion_model(&model, &settle);
+    let omega = fine::spectrum::lanczos_highest_frequency(&moving, &model.rest_state(), 100).omega;
     let dt = s[0].time_step.unwrap();
     assert!(
-        (dt * omega / (0.75 * 2.0) - 1.0).abs() < 1e-12,
-        "step {dt:.4e} s, 0.75 x 2 / omega_max = {:.4e} s",
-        1.5 / omega
+        (dt * omega / (settle.safety * 2.0) - 1.0).abs() < 1e-12,
+        "step {dt:.4e} s, {} x 2 / omega_max = {:.4e} s",
+        settle.safety,
+        settle.safety * 2.0 / omega
     );
     assert!(
         !s[0].warnings.iter().any(|w| w.contains("fallback")),

@@ -1,0 +1,118 @@
+//! The settle's fast motion (isotropic rotational inertia at 0.9 of the stable step) lands on
+//! the static equilibrium, checked against references that do not come from that motion:
+//! * without friction the static state is unique, so the fast motion and the motion with the
+//!   segments' own inertia at 0.75 of the step (the earlier default) must end, after the
+//!   Newton polish, within the polish's own error of each other;
+//! * with friction the state depends on the load path, so the check is the model's own loads
+//!   at the result, evaluated afresh: every segment's force and torque within the settle's
+//!   tolerance of the largest segment weight.
+
+use nalgebra::Vector3;
+use strand_core::{Strand, StrandSpec};
+use strand_fine::{
+    ContactOptions, Discretisation, FineModel, ModelState, SettledOptions, Support, solve_settled,
+};
+
+/// The short Table 1 strand of `tests/settled.rs` (0.1 m, 12 segments a wire), clamped at one
+/// end, under g = 8 m/s^2 along -y, with friction `mu`.
+fn strand_model(mu: f64) -> FineModel {
+    let strand = Strand::new(StrandSpec::paper(0.1, 2.0e8, 7801.0)).unwrap();
+    let mut m = FineModel::from_strand(
+        &strand,
+        Discretisation {
+            core_segments: 12,
+            wire_segments: 12,
+        },
+        Support::Clamped,
+        Support::Free,
+    );
+    m.add_contacts(
+        &strand,
+        &ContactOptions {
+            friction: Some(mu),
+            ..ContactOptions::default()
+        },
+    );
+    m.gravity = Vector3::new(0.0, -8.0, 0.0);
+    m
+}
+
+/// Settles `m` from rest with `opts`; returns the state, the report's tolerance and the
+/// settle's steps.
+fn settled(m: &FineModel, opts: &SettledOptions) -> (ModelState, f64, u64) {
+    let mut state = m.rest_state();
+    let r = solve_settled(m, &mut state, opts, &mut |_, _, _| {}).unwrap();
+    (state, r.tolerance, r.settle.steps)
+}
+
+/// The old default path: the segments' own inertia, 0.75 of the stable step.
+fn old_path() -> SettledOptions {
+    let mut o = SettledOptions::default();
+    o.settle.isotropic_inertia = false;
+    o.settle.safety = 0.75;
+    o
+}
+
+/// Largest force and torque of the model's own loads at `state` over the largest segment
+/// weight (and that weight times the largest segment length).
+fn scaled_residual(m: &FineModel, state: &ModelState) -> f64 {
+    let mut loads = m.load_buffers();
+    m.compute_loads(state, 1.0, &mut loads);
+    let segs = || m.wires.iter().flat_map(|w| w.chain.segments.iter());
+    let weight = segs().map(|s| s.mass).fold(0.0, f64::max) * m.gravity.norm();
+    let length = segs().map(|s| s.length).fold(0.0, f64::max);
+    loads
+        .iter()
+        .flat_map(|l| l.forces.iter().zip(&l.torques))
+        .map(|(f, t)| (f.norm() / weight).max(t.norm() / (weight * length)))
+        .fold(0.0, f64::max)
+}
+
+fn tip(m: &FineModel, state: &ModelState) -> Vector3<f64> {
+    *m.core_centreline(state).last().unwrap()
+}
+
+#[test]
+fn without_friction_the_fast_settle_lands_on_the_unique_equilibrium() {
+    let m = strand_model(0.0);
+    let (fast, tol, fast_steps) = settled(&m, &SettledOptions::default());
+    let (old, old_tol, old_steps) = settled(&m, &old_path());
+    let (a, b) = (tip(&m, &fast), tip(&m, &old));
+    let drop = -b.y;
+    println!(
+        "fast {fast_steps} steps, old {old_steps}; tips {a:?} / {b:?}: {:.3e} m apart, drop \
+         {drop:.4e} m",
+        (a - b).norm()
+    );
+    // A residual of 1e-9 of the largest segment weight on every segment moves the tip by at
+    // most about 1e-9 of the drop under the full weight (the tip is linear in the loads near
+    // equilibrium; every segment's weight is within a factor 2 of the largest): 1e-7 of the
+    // drop leaves room for the round-off allowance of the polish.
+    assert!(
+        (a - b).norm() <= 1e-7 * drop,
+        "tips {:.3e} m apart, beyond 1e-7 of the drop {drop:.3e} m",
+        (a - b).norm()
+    );
+    assert_eq!((tol, old_tol), (1e-9, 1e-9), "both polished by Newton");
+    assert!(scaled_residual(&m, &fast) <= 1e-8);
+    // The point of the fast path: fewer steps (the stable step is longer).
+    assert!(
+        fast_steps < old_steps,
+        "{fast_steps} steps, old {old_steps}"
+    );
+}
+
+#[test]
+fn with_friction_the_fast_settle_meets_the_residual_of_the_models_own_loads() {
+    let m = strand_model(0.3);
+    let (fast, tol, _) = settled(&m, &SettledOptions::default());
+    let r = scaled_residual(&m, &fast);
+    println!("scaled residual {r:.3e} (tolerance met {tol:.0e})");
+    // Newton accepts a residual within the round-off of the stiff joints (100 ulps of the
+    // coordinates on the stiffest spring, here above 1e-9 of the weight); the settle's
+    // tolerance bounds the result whether Newton converged or stalled.
+    assert!(
+        r <= 1e-4,
+        "scaled residual {r:.3e} (tolerance met {tol:.0e})"
+    );
+}
