@@ -309,6 +309,8 @@ fn cantilever(scene: &Scene, out: &std::path::Path) -> anyhow::Result<Vec<Row>> 
                     elements: n as i64,
                     integration_points: None,
                     mass_per_length: None,
+                    bending_stiffness: None,
+                    axial_stiffness: None,
                 }),
                 ..Default::default()
             };

@@ -256,6 +256,12 @@ pub struct BeamModelFile {
     /// Traditional model: mass per length (kg/m); default the strand's.
     #[serde(default)]
     pub mass_per_length: Option<f64>,
+    /// Traditional model: bending stiffness EI (N m^2); default the envelope cylinder's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bending_stiffness: Option<f64>,
+    /// Traditional model: axial stiffness EA (N); default the envelope cylinder's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axial_stiffness: Option<f64>,
 }
 
 /// Discretisation of the fine model.

@@ -5,6 +5,7 @@
 
 pub mod along;
 mod bending;
+pub mod decay;
 pub mod format;
 mod law_bending;
 pub mod output;

@@ -149,6 +149,10 @@ pub struct BeamModel {
     pub integration_points: Option<usize>,
     /// Mass per length (kg/m); `None` uses the strand's.
     pub mass_per_length: Option<f64>,
+    /// Traditional model: EI (N m^2); `None` uses the envelope cylinder's.
+    pub bending_stiffness: Option<f64>,
+    /// Traditional model: EA (N); `None` uses the envelope cylinder's.
+    pub axial_stiffness: Option<f64>,
 }
 
 /// Discretisation of the fine model.
@@ -1024,10 +1028,22 @@ fn beam(
         Some(v) => Some(positive(&format!("{path}.mass_per_length"), v)?),
         None => None,
     };
+    let traditional_only = |name: &str, value: Option<f64>| match value {
+        Some(_) if !traditional => Err(SceneError::new(
+            format!("{path}.{name}"),
+            "only for the traditional model (the equivalent model's stiffness is its section law)",
+        )),
+        Some(v) => Ok(Some(positive(&format!("{path}.{name}"), v)?)),
+        None => Ok(None),
+    };
+    let bending_stiffness = traditional_only("bending_stiffness", m.bending_stiffness)?;
+    let axial_stiffness = traditional_only("axial_stiffness", m.axial_stiffness)?;
     Ok(BeamModel {
         elements,
         integration_points,
         mass_per_length,
+        bending_stiffness,
+        axial_stiffness,
     })
 }
 

@@ -67,6 +67,8 @@ mod tests {
             elements: 4,
             integration_points: None,
             mass_per_length: None,
+            bending_stiffness: None,
+            axial_stiffness: None,
         };
         Models {
             equivalent: Some(beam),

@@ -586,3 +586,45 @@ fn a_closed_layer_is_accepted_and_outer_layers_are_checked() {
     assert_path(&e, "strand.layers[1].wires");
     assert!(e.message.contains("overlap"), "{e}");
 }
+
+/// The traditional beam's own EI and EA (a constant-stiffness twin): positive, traditional
+/// only, and the beam then has exactly them.
+#[test]
+fn traditional_stiffness_fields() {
+    let models = |m: Value| with(good(), "/models", m);
+    for field in ["bending_stiffness", "axial_stiffness"] {
+        reject_in(
+            models(json!({ "equivalent": { "elements": 4, field: 1.0 } })),
+            &format!("models.equivalent.{field}"),
+            "only for the traditional model",
+        );
+        for v in [0.0, -1.0] {
+            reject_in(
+                models(json!({ "traditional": { "elements": 4, field: v } })),
+                &format!("models.traditional.{field}"),
+                "positive",
+            );
+        }
+    }
+    let scene = Scene::parse(
+        &models(
+            json!({ "traditional": { "elements": 4, "bending_stiffness": 1.25,
+                                         "axial_stiffness": 3.5e6 } }),
+        )
+        .to_string(),
+    )
+    .unwrap();
+    let beam = strand_scene::build_beam(&scene, strand_scene::BeamModelKind::Traditional).unwrap();
+    assert_eq!(beam.law().stick_bending_stiffness(), 1.25);
+    assert_eq!(beam.law().axial_stiffness(), 3.5e6);
+    // One given, the other stays the envelope cylinder's.
+    let scene = Scene::parse(
+        &models(json!({ "traditional": { "elements": 4, "bending_stiffness": 1.25 } })).to_string(),
+    )
+    .unwrap();
+    let beam = strand_scene::build_beam(&scene, strand_scene::BeamModelKind::Traditional).unwrap();
+    assert_eq!(
+        beam.law().axial_stiffness(),
+        scene.strand.traditional().axial_stiffness
+    );
+}

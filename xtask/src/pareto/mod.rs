@@ -159,6 +159,8 @@ impl Config {
             elements: self.size as i64,
             integration_points: None,
             mass_per_length: None,
+            bending_stiffness: None,
+            axial_stiffness: None,
         };
         file.models = match self.model {
             Model::Equivalent => ModelsFile {

@@ -106,7 +106,17 @@ fn beam_of(scene: &Scene, name: &str, model: &BeamModel, kind: LawKind) -> Resul
         message,
     };
     let strand = &scene.strand;
-    let law = SectionLaw::with_options(strand, kind, &scene.section);
+    let law = match (kind, model.bending_stiffness, model.axial_stiffness) {
+        (LawKind::Constant, ei, ea) if ei.is_some() || ea.is_some() => {
+            let envelope = strand.traditional();
+            SectionLaw::constant(
+                strand,
+                ei.unwrap_or(envelope.bending_stiffness),
+                ea.unwrap_or(envelope.axial_stiffness),
+            )
+        }
+        _ => SectionLaw::with_options(strand, kind, &scene.section),
+    };
     let mass = model.mass_per_length.unwrap_or(strand.mass_per_length());
     let spec = BeamSpec {
         elements: model.elements,

@@ -1,0 +1,56 @@
+//! The cost of a scene's equivalent beam against its traditional twin, for instruction counts
+//! (the command-line runner reads the CPU clock through the vDSO, which valgrind does not
+//! map; this runs the same beams and options without it):
+//!
+//! ```text
+//! cargo build --release -p strand-scene --example span_cost
+//! valgrind --tool=callgrind target/release/examples/span_cost SCENE equivalent
+//! valgrind --tool=callgrind target/release/examples/span_cost SCENE traditional
+//! target/release/examples/span_cost SCENE equivalent traditional equivalent traditional
+//! ```
+//!
+//! Each named model is built with `strand_scene::build_beam` and run with the scene's
+//! `dynamic_options`, as `strand run` does, in the order given (interleaved rounds); per run
+//! it prints steps, Newton iterations, matrices, cut steps, iterations per step, the balance
+//! error and the solve's wall time (the beam's set-up apart).
+
+use std::time::Instant;
+
+use strand_ancf::dynamics::run_dynamic_from;
+use strand_ancf::initial::InitialState;
+use strand_scene::{BeamModelKind, Scene, build_beam, dynamic_options};
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    assert!(
+        args.len() >= 2,
+        "usage: span_cost SCENE (equivalent|traditional)..."
+    );
+    let text = std::fs::read_to_string(&args[0]).expect("scene file");
+    let scene = Scene::parse(&text).expect("valid scene");
+    let opts = dynamic_options(&scene).expect("a dynamic scene");
+    for name in &args[1..] {
+        let which = match name.as_str() {
+            "equivalent" => BeamModelKind::Equivalent,
+            "traditional" => BeamModelKind::Traditional,
+            other => panic!("unknown model {other}"),
+        };
+        let beam = build_beam(&scene, which).expect("beam");
+        let init = InitialState::rigid(&beam, scene.velocity, scene.angular_velocity)
+            .expect("initial state");
+        let start = Instant::now();
+        let s = run_dynamic_from(&beam, &opts, &init, &mut |_| {}).expect("run");
+        let wall = start.elapsed().as_secs_f64();
+        println!(
+            "{name:<12} law {:<10} steps {} newton {} matrices {} cut {} iterations/step {:.3} \
+             balance {:.3e} J  solve {wall:.3} s",
+            beam.law().kind(),
+            s.steps,
+            s.newton_iterations,
+            s.factorizations,
+            s.cut_steps,
+            s.newton_iterations as f64 / s.steps as f64,
+            s.balance_error
+        );
+    }
+}
