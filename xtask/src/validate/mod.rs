@@ -718,6 +718,32 @@ mod tests {
         }
     }
 
+    /// The elastica limits are the beam's own discretisation error bounded by refinement (the
+    /// sum of the changes over four meshes plus the finest one's Richardson error), so a
+    /// 0.1 % stiffness error in the model runs fails `equivalent-vs-elastica` on each of the
+    /// Fig. 7 and section-3 scenes (the unperturbed scenes pass in `validate --quick`).
+    #[test]
+    fn a_tenth_of_a_percent_stiffness_error_fails_the_elastica_limits() {
+        for scene in [
+            "paper-fig7-g8",
+            "paper-fig7-g10",
+            "paper-fig7-g12",
+            "paper-sec3-g8",
+            "paper-sec3-g10",
+            "paper-sec3-g12",
+        ] {
+            let mut a = args(&format!("tenth-percent-{scene}"), Some(1.001));
+            a.scene = Some(scene.into());
+            let report = run(&a).unwrap();
+            let failed = failing_checks(&report);
+            assert!(
+                failed.contains(&"equivalent-vs-elastica"),
+                "{scene}: {failed:?}"
+            );
+            std::fs::remove_dir_all(a.out.unwrap()).unwrap();
+        }
+    }
+
     /// The comparisons with the fine model can fail: on the 30 deg strand, planar and bent out
     /// of its plane by a tip force (3D), the paper's base stiffness (K_min 12 % below
     /// Costello's) puts the equivalent's tip about 1e-3 m from the fine model's, ten times the
