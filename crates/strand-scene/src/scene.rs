@@ -735,18 +735,48 @@ fn strand(file: &SceneFile) -> Result<Strand, SceneError> {
         layers.push(layer(k, l, beneath)?);
         beneath += 2.0 * l.diameter;
     }
-    let spec = StrandSpec {
+    let mut spec = StrandSpec {
         length: s.length,
         core,
         layers,
         friction: s.friction.unwrap_or(DEFAULT_FRICTION),
     };
-    Strand::new(spec).map_err(|e| e.within("strand").into())
+    let mut strand = Strand::new(spec.clone()).map_err(|e| e.within("strand"))?;
+    // A layer given by its pitch keeps it on the radius the stacking gives: a closed layer's
+    // lift (and the lifts beneath an outer layer) move the helix radius off the stacked one
+    // the angle was taken on (Cardinal's steel layer: 16.6 um, which made its 0.2104 m pitch
+    // 0.2114 m). The lift depends on the angle only weakly (through d_w / cos alpha), so
+    // taking the angle again on the new radius converges in a few rounds.
+    for _ in 0..MAX_PITCH_ROUNDS {
+        let mut moved = false;
+        for ((l, built), lay) in s.layers.iter().zip(strand.layers()).zip(&mut spec.layers) {
+            if let Some(pitch) = l.pitch
+                && (built.pitch - pitch).abs() > PITCH_TOLERANCE * pitch
+            {
+                lay.lay_angle = (2.0 * std::f64::consts::PI * built.radius / pitch).atan();
+                moved = true;
+            }
+        }
+        if !moved {
+            break;
+        }
+        strand = Strand::new(spec.clone()).map_err(|e| e.within("strand"))?;
+    }
+    Ok(strand)
 }
 
+/// Relative tolerance of a layer's pitch against the scene's `pitch` (module docs of
+/// [`strand`]): far below any lay length's manufacturing tolerance, far above round-off.
+const PITCH_TOLERANCE: f64 = 1e-12;
+
+/// Rounds of taking a given pitch's lay angle again on the lifted radius; each shrinks the
+/// pitch's error by the lift's sensitivity to the angle (about tan(alpha)^2 d R / R), so two
+/// or three reach [`PITCH_TOLERANCE`].
+const MAX_PITCH_ROUNDS: usize = 20;
+
 /// Layer `k` of the scene, lying on a cylinder of diameter `beneath` (m): a pitch converts to
-/// the lay angle on the stacked helix radius (beneath + d_w) / 2; a closed layer's lift (a few
-/// microns, module `strand_core::geometry::stack`) changes its pitch by as little.
+/// the lay angle on the stacked helix radius (beneath + d_w) / 2, taken again on the lifted
+/// radius of a closed layer by [`strand`].
 fn layer(k: usize, l: &LayerFile, beneath: f64) -> Result<LayerSpec, SceneError> {
     let p = |f: &str| format!("strand.layers[{k}].{f}");
     let wires = count(&p("wires"), l.wires, 1, 1000)?;
