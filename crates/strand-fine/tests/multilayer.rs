@@ -304,3 +304,66 @@ fn frictionless_1x19_bends_with_the_sum_of_thin_rod_k_min() {
     assert!((fine - coarse).abs() < 2e-3 * fine, "not converged");
     assert!((fine / k_min - 1.0).abs() < 1e-2, "{} K_min", fine / k_min);
 }
+
+/// A two-material conductor section: steel 1+6 (3 mm, 8 deg right) under twelve aluminium
+/// wires (3 mm, 12 deg left). Frictionless M / kappa against the sum of the thin-rod K_min,
+/// as for the steel strand (3 outer pitches, T = 0.1 N, kappa = 0.1 1/m), at 12 and 24
+/// segments per pitch within 2e-3 of each other and the finer within 1 % of K_min.
+#[test]
+fn frictionless_steel_aluminium_section_bends_with_the_sum_of_thin_rod_k_min() {
+    let aluminium = Material {
+        youngs_modulus: 6.9e10,
+        poisson_ratio: 0.33,
+        density: 2700.0,
+    };
+    let s = Strand::new(StrandSpec {
+        length: 1.0,
+        core: WireSpec {
+            diameter: 3.0e-3,
+            material: steel(),
+        },
+        layers: vec![
+            layer(6, 3.0e-3, 8.0, LayDirection::Right, steel()),
+            layer(12, 3.0e-3, 12.0, LayDirection::Left, aluminium),
+        ],
+        friction: 0.0,
+    })
+    .unwrap();
+    let k = |spp: usize| {
+        BendingTest::frictionless(3, spp, 0.1, 0.1)
+            .run(&s)
+            .expect("bending test")
+            .last()
+            .unwrap()
+            .secant_stiffness()
+    };
+    let (coarse, fine) = (k(12), k(24));
+    let k_min = s.min_bending_stiffness(BaseStiffness::Costello);
+    println!(
+        "steel/aluminium: M/kappa {coarse:.6e}, {fine:.6e} N m^2 at 12, 24 segments per pitch: \
+         {:.5}, {:.5} K_min",
+        coarse / k_min,
+        fine / k_min
+    );
+    assert!((fine - coarse).abs() < 2e-3 * fine, "not converged");
+    assert!((fine / k_min - 1.0).abs() < 1e-2, "{} K_min", fine / k_min);
+}
+
+/// The same count on a same-lay pair (both layers right-laid, crossing angle 4 deg): the
+/// crossings of the lay phases, now slow (one every 6.4 outer pitches per wire pair) and
+/// long, are each held by one link.
+#[test]
+fn links_find_every_crossing_of_a_same_lay_pair_once() {
+    let s = strand_1x19(0.6, true);
+    let options = ContactOptions::default();
+    let m = model(&s, 120, &options);
+    let delta = options.penetration * 3.0e-3;
+    let found = touching(&m, &m.rest_state(), delta);
+    let lines = found.iter().filter(|(k, _)| *k == LinkKind::Line).count();
+    let (outer, inner) = (&s.layers()[1], &s.layers()[0]);
+    let geometric: usize = (0..outer.wires())
+        .map(|i| interlayer::geometric_crossings(outer, i, inner, 0.0, s.length()))
+        .sum();
+    println!("same lay: {lines} line contacts found, {geometric} crossings from the phases");
+    assert_eq!(lines, geometric);
+}
