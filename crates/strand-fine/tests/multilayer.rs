@@ -367,3 +367,44 @@ fn links_find_every_crossing_of_a_same_lay_pair_once() {
     println!("same lay: {lines} line contacts found, {geometric} crossings from the phases");
     assert_eq!(lines, geometric);
 }
+
+/// The loads with wire-to-wire contacts are the same, bit for bit, on 1 and 3 threads (the
+/// partners' shares are summed in wire and link order after the parallel sweep).
+#[test]
+fn link_loads_do_not_depend_on_the_thread_count() {
+    let s = strand_1x19(0.1, false);
+    let options = ContactOptions {
+        reference_tension: Some(1000.0),
+        ..ContactOptions::default()
+    };
+    let m = model(&s, 10, &options);
+    let mut state = m.rest_state();
+    for w in &mut state.wires[7..] {
+        for p in &mut w.poses {
+            let r = Vector3::new(0.0, p.position.y, p.position.z);
+            p.position -= r.normalize() * 6e-6;
+        }
+    }
+    let loads = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut l = m.load_buffers();
+            m.compute_loads(&state, 1.0, &mut l);
+            l
+        })
+    };
+    let (one, three) = (loads(1), loads(3));
+    let closed = one
+        .iter()
+        .flat_map(|l| &l.contacts)
+        .filter(|c| c.state != strand_fine::ContactState::Open)
+        .count();
+    assert!(closed > 20, "{closed}");
+    for (a, b) in one.iter().zip(&three) {
+        assert_eq!(a.forces, b.forces);
+        assert_eq!(a.torques, b.torques);
+    }
+}
