@@ -102,7 +102,8 @@ enum Command {
         /// Axial tension T (N).
         #[arg(long)]
         tension: f64,
-        /// Curvatures (1/m), increasing, comma separated; default: 10 values from 0.2 to 20
+        /// Curvatures (1/m), comma separated, each reached from the one before (a sequence
+        /// that turns back reverses the load); default: 10 increasing values from 0.2 to 20
         /// times the law's smallest critical curvature at this tension.
         #[arg(long, value_delimiter = ',')]
         curvatures: Vec<f64>,

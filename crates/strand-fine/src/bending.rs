@@ -34,7 +34,9 @@ pub struct BendingTest {
     pub segments_per_pitch: usize,
     /// Axial tension T (N).
     pub tension: f64,
-    /// Curvatures of the load steps after the tension step (1/m), increasing.
+    /// Curvatures of the load steps after the tension step (1/m), each reached from the one
+    /// before: increasing for a loading curve; a sequence that turns back (to negative
+    /// values) reverses the load.
     pub curvatures: Vec<f64>,
     /// Contacts; the reference tension defaults to the wire tension under `T`.
     pub contact: ContactOptions,
@@ -174,9 +176,11 @@ impl ArcMap {
         if self.kappa == 0.0 {
             return Vector3::new(w.x / (1.0 + self.eps), w.y, w.z);
         }
+        // rho = 1/kappa - y has the sign of kappa (the arc bends either way).
+        let sign = self.kappa.signum();
         let (vx, vy) = (w.x, w.y - 1.0 / self.kappa);
-        let th = vx.atan2(-vy);
-        let rho = (vx * vx + vy * vy).sqrt();
+        let th = (sign * vx).atan2(-sign * vy);
+        let rho = sign * (vx * vx + vy * vy).sqrt();
         Vector3::new(
             th / self.kappa / (1.0 + self.eps),
             1.0 / self.kappa - rho,
@@ -221,7 +225,9 @@ impl BendingTest {
     /// radius. `None` when a factor the rod model does not carry differs from 1 (the axial
     /// factors, the core's bending and torsion).
     pub fn rod_options(&self, strand: &Strand) -> Option<BondedOptions> {
-        let layer = strand.layers().first()?;
+        let [layer] = strand.layers() else {
+            return None;
+        };
         let (c, w) = (&self.core_springs, &self.wire_springs);
         if [c.axial, c.bending, c.torsion, w.axial] != [1.0; 4] {
             return None;
@@ -260,8 +266,13 @@ impl BendingTest {
         strand: &Strand,
         progress: &mut dyn FnMut(&BendingPoint),
     ) -> Result<(Vec<BendingPoint>, FineModel, ModelState), BendingError> {
-        let layer = strand.layers().first().ok_or(BendingError::NoLayer)?;
-        let pitch = layer.pitch;
+        // The longest pitch: every layer spans at least `pitches` of its own.
+        let pitch = strand
+            .layers()
+            .iter()
+            .map(|l| l.pitch)
+            .reduce(f64::max)
+            .ok_or(BendingError::NoLayer)?;
         let length = pitch * self.pitches as f64;
         let spec = StrandSpec {
             length,
@@ -275,7 +286,6 @@ impl BendingTest {
                 e.within("strand")
             ))
         })?;
-        let layer = strand.layers().first().ok_or(BendingError::NoLayer)?;
         let n = self
             .pitches
             .checked_mul(self.segments_per_pitch)
@@ -299,8 +309,13 @@ impl BendingTest {
         let eps = self.tension / ea;
         model.add_contacts(&strand, &self.contact_options(&strand));
         let core = strand.core();
-        let shares: Vec<f64> = std::iter::once(core.material.youngs_modulus * core.area() / ea)
-            .chain((0..layer.wires()).map(|_| layer.wire_axial_stiffness() / ea))
+        let shares: Vec<f64> = model
+            .wires
+            .iter()
+            .map(|w| match w.layer {
+                0 => core.material.youngs_modulus * core.area() / ea,
+                j => strand.layers()[j - 1].wire_axial_stiffness() / ea,
+            })
             .collect();
         // Rest ground poses of the end plate's anchors.
         let end_grounds: Vec<Vec<(usize, Pose)>> = model
@@ -547,5 +562,13 @@ mod tests {
         let p = Pose::new(straight.point(&r), UnitQuaternion::identity());
         let q = m.remap(&straight, &p);
         assert!((q.position - m.point(&r)).norm() < 1e-15);
+        // Bent the other way (load reversal).
+        let n = ArcMap {
+            kappa: -2.0,
+            eps: 1e-3,
+        };
+        assert!((n.inverse(&n.point(&r)) - r).norm() < 1e-15);
+        let q = n.remap(&m, &Pose::new(m.point(&r), m.rotation(r.x)));
+        assert!((q.position - n.point(&r)).norm() < 1e-15);
     }
 }

@@ -259,16 +259,45 @@ pub fn evaluate_pair<W: Placement, C: Placement>(
 ) -> ContactLoad {
     let p = wire.point(&cp.offset);
     let q = closest_on_axis(&p, cj, core_length);
+    respond(
+        &cp.law,
+        history,
+        (&p, &q),
+        cp.rest_distance,
+        cp.core_share,
+        wire,
+        (cj, j),
+        anchor_core,
+    )
+}
+
+/// The contact law between the point `p` of the body at `wire` and the point `q` of the
+/// partner body at `cj` (its segment index `j`), both bodies' contact points on the line
+/// `q p`: penalty on the gap `|p - q| - rest_distance` along `n = (p - q) / |p - q|` and the
+/// stick/slip spring from the committed `history`, anchored on the partner at `anchor_core`
+/// (module docs); the contact point divides `q p` at `share` from `q`. One law for the
+/// wire-to-core contacts and the wire-to-wire ones ([`crate::interlayer`]).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn respond<W: Placement, C: Placement>(
+    law: &ContactLaw,
+    history: &ContactHistory,
+    (p, q): (&Vector3<f64>, &Vector3<f64>),
+    rest_distance: f64,
+    share: f64,
+    wire: &W,
+    (cj, j): (&C, usize),
+    anchor_core: &C,
+) -> ContactLoad {
+    let (p, q) = (*p, *q);
     let d = p - q;
     let dist = d.norm();
-    let gap = dist - cp.rest_distance;
+    let gap = dist - rest_distance;
     if gap >= 0.0 || dist == 0.0 {
         return ContactLoad::open_at(j);
     }
-    let law = &cp.law;
     let n = d / dist;
     let fn_ = law.normal_stiffness * (-gap);
-    let x = q + d * cp.core_share;
+    let x = q + d * share;
     // Tangential elastic displacement of the wire relative to the core.
     let (u, aw, ac) = if history.closed {
         let aw = wire.point(&history.on_wire);

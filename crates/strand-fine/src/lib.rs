@@ -10,7 +10,8 @@
 //! * [`statics`]: Newton-Raphson static equilibrium; [`dynamics`]: symplectic time stepping;
 //!   [`motion`]: moving supports and rigid initial velocities.
 //! * [`contact`]: wire-to-core contact (penalty and Cundall-Strack friction with history),
-//!   added to a model by [`FineModel::add_contacts`].
+//!   added to a model by [`FineModel::add_contacts`]; [`interlayer`]: wire-to-wire contact
+//!   (crossings and lines with the layer beneath, neighbours in a layer) with the same law.
 //! * [`bending`]: the virtual bending test (moment against curvature under tension).
 //!
 //! Units are SI throughout (m, kg, s, N, rad).
@@ -27,14 +28,16 @@
 //!   joint or contact, contact histories frozen); the static solve factors their assembly
 //!   with a sparse LU. The explicit stable step bounds contacts as closed springs.
 //! * Loads are computed in parallel over wires; each wire's loads depend on that wire (and,
-//!   for contacts, on the core's poses) only, and the core's share of the contact loads is
-//!   summed in a fixed order, so results are identical for any number of threads.
+//!   for contacts, on its partners' poses) only, and the partners' share of the contact loads
+//!   (the core's, then the wire-to-wire links') is summed in a fixed order, so results are
+//!   identical for any number of threads.
 //! * Contact histories are committed only on accepted time steps and converged load steps.
 
 pub mod bending;
 pub mod chain;
 pub mod contact;
 pub mod dynamics;
+pub mod interlayer;
 pub mod joint;
 pub mod model;
 pub mod motion;
@@ -54,8 +57,8 @@ pub use contact::{
 pub use dynamics::{Integrator, stable_time_step};
 pub use joint::{JointLoad, JointSpring, JointStiffness};
 pub use model::{
-    Anchor, Discretisation, End, Energies, FineModel, ModelState, SpringScale, Support, Tie, Wire,
-    WireLoads, WireState,
+    Anchor, Discretisation, End, Energies, FineModel, ModelState, NEIGHBOUR_GAP, SpringScale,
+    Support, Tie, Wire, WireLoads, WireState,
 };
 pub use segment::{Pose, Segment};
 pub use settle::{

@@ -1,22 +1,28 @@
 //! The fine model of a strand: one segment chain per wire, supports and gravity, its state
 //! (poses and momenta) and its loads and energies.
 //!
-//! Wire 0 is the core (straight along +X from the origin); wires 1..=m are the helical wires.
+//! Wire 0 is the core (straight along +X from the origin); then the helical wires layer by
+//! layer.
 //! Supports are ground joints: a clamp holds the wire's end point and its rotation, a pin only
 //! the end point. A support joint carries the springs of the half segment between the wire's
 //! end and the first segment's centre (twice the stiffness of an interior joint), so that the
 //! chain's bending flexibility is distributed over the whole wire length.
 //!
-//! Contacts ([`crate::contact`]) belong to the helical wires; their core-side loads are added
-//! to the core after the parallel sweep over wires, in wire and contact order, so the sums are
-//! the same for any number of threads.
+//! Contacts ([`crate::contact`], [`crate::interlayer`]) belong to the helical wires; their
+//! partner-side loads (on the core, on a wire of the layer beneath or a neighbour) are added
+//! after the parallel sweep over wires, in wire and contact order, so the sums are the same
+//! for any number of threads. A wire's committed histories and trial loads list its
+//! wire-to-core contacts first, then its links.
 
 use nalgebra::Vector3;
 use rayon::prelude::*;
-use strand_core::Strand;
+use strand_core::{HelixLayer, Strand};
 
 use crate::chain::{Chain, WireSection};
-use crate::contact::{self, ContactHistory, ContactLaw, ContactLoad, ContactOptions, ContactPoint};
+use crate::contact::{
+    self, ContactHistory, ContactLaw, ContactLoad, ContactOptions, ContactPoint, ContactState,
+};
+use crate::interlayer::{self, LinkKind, WireLink};
 use crate::joint::{JointSpring, JointStiffness};
 use crate::segment::{Frame, Placement, Pose};
 
@@ -60,10 +66,15 @@ pub struct Anchor {
 pub struct Wire {
     /// The segment chain.
     pub chain: Chain,
+    /// Layer of the wire: 0 for the core, `j + 1` for a wire of `Strand::layers()[j]`.
+    pub layer: usize,
     /// Ground joints acting on the wire.
     pub anchors: Vec<Anchor>,
-    /// Contact points of this wire with the core (helical wires only).
+    /// Contact points of this wire with the core (wires of the first layer only).
     pub contacts: Vec<ContactPoint>,
+    /// Contacts of this wire's segments with other wires ([`crate::interlayer`]): with the
+    /// wires of the layer beneath (outer layers) and with the next wire of its own layer.
+    pub links: Vec<WireLink>,
     /// Dead force on each segment's centre (N), scaled by the load factor like gravity;
     /// empty for none.
     pub external: Vec<Vector3<f64>>,
@@ -74,8 +85,10 @@ impl Wire {
     pub fn new(chain: Chain) -> Self {
         Self {
             chain,
+            layer: 0,
             anchors: Vec::new(),
             contacts: Vec::new(),
+            links: Vec::new(),
             external: Vec::new(),
         }
     }
@@ -212,7 +225,8 @@ pub struct Discretisation {
 /// The fine model: wires, supports and gravity.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FineModel {
-    /// Wire 0 is the core; wires 1..=m the helical wires in phase order.
+    /// Wire 0 is the core; then the helical wires layer by layer from the core outward, each
+    /// layer's in phase order.
     pub wires: Vec<Wire>,
     /// Gravity (m/s^2), scaled by the load factor in static solves.
     pub gravity: Vector3<f64>,
@@ -221,9 +235,9 @@ pub struct FineModel {
 }
 
 impl FineModel {
-    /// Model of `strand` with supports `start` at x = 0 and `end` at x = L on every wire. The
-    /// fine model runs the core and the first helical layer (a `1+m` strand): scenes refuse a
-    /// second layer (`strand.layers[1]`) before they reach it.
+    /// Model of `strand` with supports `start` at x = 0 and `end` at x = L on every wire of
+    /// every layer, each laid on its stacked radius, lay direction and phase
+    /// (`Strand::layers()`).
     pub fn from_strand(
         strand: &Strand,
         disc: Discretisation,
@@ -236,14 +250,11 @@ impl FineModel {
             strand.length(),
             disc.core_segments,
         ))];
-        if let Some(layer) = strand.layers().first() {
+        for (j, layer) in strand.layers().iter().enumerate() {
             for i in 0..layer.wires() {
-                wires.push(Wire::new(Chain::helix(
-                    layer,
-                    i,
-                    strand.length(),
-                    disc.wire_segments,
-                )));
+                let mut w = Wire::new(Chain::helix(layer, i, strand.length(), disc.wire_segments));
+                w.layer = j + 1;
+                wires.push(w);
             }
         }
         for (i, w) in wires.iter_mut().enumerate() {
@@ -288,12 +299,19 @@ impl FineModel {
         }
     }
 
-    /// Adds contact points between every helical wire of `strand` (wires 1..) and the core
-    /// (wire 0), with the stiffnesses of `options` (see [`ContactOptions`]).
+    /// Adds contact points between every wire of the first layer of `strand` and the core
+    /// (wire 0), with the stiffnesses of `options` (see [`ContactOptions`]), and the
+    /// wire-to-wire links of the outer layers ([`FineModel::add_links`]).
     pub fn add_contacts(&mut self, strand: &Strand, options: &ContactOptions) {
         let Some(layer) = strand.layers().first() else {
             return;
         };
+        self.add_core_contacts(strand, layer, options);
+        self.add_links(strand, options);
+    }
+
+    /// The wire-to-core contact points of the first layer's wires.
+    fn add_core_contacts(&mut self, strand: &Strand, layer: &HelixLayer, options: &ContactOptions) {
         let wire = &layer.spec.wire;
         let (normal_per_length, shear_per_length) = options.stiffness_per_length(layer);
         let friction = options.friction.unwrap_or(strand.friction());
@@ -303,7 +321,9 @@ impl FineModel {
         let (core_wire, helical) = self.wires.split_at_mut(1);
         let core = &core_wire[0].chain;
         let core_frames: Vec<Frame> = core.rest.iter().map(Frame::of).collect();
-        for w in helical.iter_mut() {
+        // Wires of the first layer (a wire built by hand, of layer 0 past the core, counts
+        // as one).
+        for w in helical.iter_mut().filter(|w| w.layer <= 1) {
             let c = &w.chain;
             let mut points = Vec::with_capacity(n_pts * c.len());
             for (k, seg) in c.segments.iter().enumerate() {
@@ -336,6 +356,133 @@ impl FineModel {
                 }
             }
             w.contacts = points;
+        }
+    }
+
+    /// Adds the wire-to-wire links of `strand` ([`crate::interlayer`]): every segment of a
+    /// wire of layer `j >= 1` with every wire of layer `j - 1` (crossings for alternate lay,
+    /// lines for the same lay direction), and, in a layer whose neighbouring wires stand less
+    /// than [`NEIGHBOUR_GAP`] wire diameters apart, every segment of wire `i` with wire
+    /// `i + 1` (cyclically, for three wires or more). Stiffnesses: the outer wire's line
+    /// pressure under the reference tension of `options` (taken as the first layer's wire
+    /// tension, carried to every layer at the same strand strain) at the allowed penetration,
+    /// over the wire length each link stands for; the stick stiffness per unit length of the
+    /// layer ([`ContactOptions::stiffness_per_length`]). Nothing for a model whose wires are
+    /// not those of `strand` ([`FineModel::from_strand`]).
+    pub fn add_links(&mut self, strand: &Strand, options: &ContactOptions) {
+        let layers = strand.layers();
+        let Some(first_layer) = layers.first() else {
+            return;
+        };
+        // Only a model laid from `strand` (its wires in layer order).
+        if self.wires.len() != 1 + strand.helical_wires() {
+            return;
+        }
+        let wire_tension = |l: &HelixLayer, eps: f64| {
+            let w = &l.spec.wire;
+            w.material.youngs_modulus * w.area() * l.lay_angle().cos().powi(2) * eps
+        };
+        // The strand strain of the reference tension.
+        let eps = options
+            .reference_tension
+            .map_or(options.reference_strain, |t| {
+                t / wire_tension(first_layer, 1.0)
+            });
+        let friction = options.friction.unwrap_or(strand.friction());
+        let mut first = Vec::with_capacity(layers.len());
+        let mut n = 1;
+        for l in layers {
+            first.push(n);
+            n += l.wires();
+        }
+        let frames: Vec<Vec<Frame>> = self
+            .wires
+            .iter()
+            .map(|w| w.chain.rest.iter().map(Frame::of).collect())
+            .collect();
+        for (j, outer) in layers.iter().enumerate() {
+            let opts = ContactOptions {
+                reference_tension: Some(wire_tension(outer, eps)),
+                ..*options
+            };
+            let (normal_per_length, shear_per_length) = opts.stiffness_per_length(outer);
+            let ra = outer.spec.wire.radius();
+            let delta = options.penetration * outer.spec.wire.diameter;
+            // Partners: (first wire, wire count, radius, kind, crossing distance along the
+            // outer wire (m); infinite for parallel wires).
+            let mut partners = Vec::new();
+            if j > 0 {
+                let inner = &layers[j - 1];
+                let kind = LinkKind::of(strand.interface(j).contact);
+                let rate = (outer.direction().sign() / outer.pitch
+                    - inner.direction().sign() / inner.pitch)
+                    .abs();
+                let spacing = 1.0 / (inner.wires() as f64 * rate * outer.lay_angle().cos());
+                partners.push((first[j - 1], inner.wires(), inner, kind, spacing, false));
+            }
+            if outer.wires() >= 3 && outer.wire_gap() <= NEIGHBOUR_GAP * outer.spec.wire.diameter {
+                partners.push((
+                    first[j],
+                    outer.wires(),
+                    outer,
+                    LinkKind::Neighbour,
+                    f64::INFINITY,
+                    true,
+                ));
+            }
+            for i in 0..outer.wires() {
+                let wi = first[j] + i;
+                let chain = &self.wires[wi].chain;
+                let mut links = Vec::new();
+                for (k, seg) in chain.segments.iter().enumerate() {
+                    let la = seg.length;
+                    let sag = helix_sag(outer, &chain.rest[k]);
+                    let length = |spacing: f64| la.min(spacing);
+                    for &(p0, m, inner, kind, spacing, neighbour) in &partners {
+                        let partners: Vec<usize> = if neighbour {
+                            vec![p0 + (i + 1) % m]
+                        } else {
+                            (p0..p0 + m).collect()
+                        };
+                        let rb = inner.spec.wire.radius();
+                        for pw in partners {
+                            let pc = &self.wires[pw].chain;
+                            let l_eff = length(spacing);
+                            let mut link = WireLink {
+                                segment: k,
+                                partner: pw,
+                                kind,
+                                radii: ra + rb,
+                                rest_gap: 0.0,
+                                sag,
+                                partner_sag: helix_sag(inner, &pc.rest[0]),
+                                epsilon: 2.0 * delta * (ra + rb) / (la * la),
+                                partner_share: rb / (ra + rb),
+                                length: l_eff,
+                                law: ContactLaw {
+                                    normal_stiffness: normal_per_length * l_eff,
+                                    tangential_stiffness: shear_per_length * l_eff,
+                                    friction,
+                                },
+                            };
+                            let guess = rest_partner(pc, chain.rest[k].position.x);
+                            let (_, ap) = interlayer::pair(
+                                &link,
+                                &frames[wi][k],
+                                la,
+                                &frames[pw],
+                                &pc.segments,
+                                guess,
+                            );
+                            if (-0.5 * la..0.5 * la).contains(&ap.s) {
+                                link.rest_gap = ap.gap(&link).min(0.0);
+                            }
+                            links.push(link);
+                        }
+                    }
+                }
+                self.wires[wi].links = links;
+            }
         }
     }
 
@@ -409,9 +556,14 @@ impl FineModel {
         }
     }
 
-    /// Total number of contact points.
+    /// Total number of wire-to-core contact points.
     pub fn contact_count(&self) -> usize {
         self.wires.iter().map(|w| w.contacts.len()).sum()
+    }
+
+    /// Total number of wire-to-wire links ([`crate::interlayer`]).
+    pub fn link_count(&self) -> usize {
+        self.wires.iter().map(|w| w.links.len()).sum()
     }
 
     /// Total number of segments.
@@ -435,19 +587,21 @@ impl FineModel {
                 .wires
                 .iter()
                 .map(|w| {
-                    w.contacts
-                        .iter()
-                        .map(|cp| {
-                            let p = w.chain.rest[cp.segment].point(&cp.offset);
-                            let core = &self.wires[0].chain;
-                            ContactHistory::open(contact::nearest_core_segment(
-                                &core.rest,
-                                &core.segments,
-                                &p,
-                                0,
-                            ))
-                        })
-                        .collect()
+                    let core = w.contacts.iter().map(|cp| {
+                        let p = w.chain.rest[cp.segment].point(&cp.offset);
+                        let core = &self.wires[0].chain;
+                        ContactHistory::open(contact::nearest_core_segment(
+                            &core.rest,
+                            &core.segments,
+                            &p,
+                            0,
+                        ))
+                    });
+                    let links = w.links.iter().map(|l| {
+                        let x = w.chain.rest[l.segment].position.x;
+                        ContactHistory::open(rest_partner(&self.wires[l.partner].chain, x))
+                    });
+                    core.chain(links).collect()
                 })
                 .collect(),
             friction_work: 0.0,
@@ -463,7 +617,7 @@ impl FineModel {
                 torques: vec![Vector3::zeros(); w.chain.len()],
                 spring_energy: 0.0,
                 gravity_energy: 0.0,
-                contacts: w.contacts.iter().map(|_| ContactLoad::open_at(0)).collect(),
+                contacts: vec![ContactLoad::open_at(0); w.contacts.len() + w.links.len()],
                 contact_energy: 0.0,
                 friction_energy: 0.0,
                 slip_work: 0.0,
@@ -478,94 +632,114 @@ impl FineModel {
     /// [`FineModel::commit_contacts`]). The result is the same for any number of threads.
     pub fn compute_loads(&self, state: &ModelState, load_factor: f64, loads: &mut [WireLoads]) {
         let g = self.gravity * load_factor;
-        let core_poses = &state.wires[0].poses;
+        // Every wire's frames first: contacts read their partners' (the core's, and the
+        // wires' of the layer beneath and of the neighbours).
+        let mut frames: Vec<Vec<Frame>> = loads
+            .iter_mut()
+            .map(|l| std::mem::take(&mut l.frames))
+            .collect();
+        frames
+            .par_iter_mut()
+            .zip(state.wires.par_iter())
+            .for_each(|(f, s)| {
+                for (fi, p) in f.iter_mut().zip(&s.poses) {
+                    *fi = Frame::of(p);
+                }
+            });
+        let all_frames = &frames;
         let core_segs = &self.wires[0].chain.segments;
-        // The core's frames, read by every wire's contacts; the core's own loads alongside
-        // the helical wires'.
-        let (core_l, helical_l) = loads.split_at_mut(1);
-        let core_l = &mut core_l[0];
-        for (f, p) in core_l.frames.iter_mut().zip(core_poses) {
-            *f = Frame::of(p);
-        }
-        let WireLoads {
-            frames: core_frames,
-            forces: core_forces,
-            torques: core_torques,
-            spring_energy: core_spring,
-            gravity_energy: core_gravity,
-            ..
-        } = core_l;
-        let core_frames = &*core_frames;
-        let core_wire = &self.wires[0];
-        rayon::join(
-            || {
-                core_forces.fill(Vector3::zeros());
-                core_torques.fill(Vector3::zeros());
-                let (spring, grav) = core_wire.add_loads(
-                    core_poses,
-                    core_frames,
+        self.wires
+            .par_iter()
+            .zip(state.wires.par_iter())
+            .zip(state.contacts.par_iter())
+            .zip(loads.par_iter_mut())
+            .enumerate()
+            .for_each(|(i, (((w, s), hist), l))| {
+                let frames = &all_frames[i];
+                l.forces.iter_mut().for_each(|f| *f = Vector3::zeros());
+                l.torques.iter_mut().for_each(|t| *t = Vector3::zeros());
+                let (spring, grav) = w.add_loads(
+                    &s.poses,
+                    frames,
                     &g,
                     load_factor,
-                    core_forces,
-                    core_torques,
+                    &mut l.forces,
+                    &mut l.torques,
                 );
-                *core_spring = spring;
-                *core_gravity = grav;
-            },
-            || {
-                self.wires[1..]
-                    .par_iter()
-                    .zip(state.wires[1..].par_iter())
-                    .zip(state.contacts[1..].par_iter())
-                    .zip(helical_l.par_iter_mut())
-                    .for_each(|(((w, s), hist), l)| {
-                        l.forces.iter_mut().for_each(|f| *f = Vector3::zeros());
-                        l.torques.iter_mut().for_each(|t| *t = Vector3::zeros());
-                        for (f, p) in l.frames.iter_mut().zip(&s.poses) {
-                            *f = Frame::of(p);
-                        }
-                        let (spring, grav) = w.add_loads(
-                            &s.poses,
-                            &l.frames,
-                            &g,
-                            load_factor,
-                            &mut l.forces,
-                            &mut l.torques,
-                        );
-                        l.spring_energy = spring;
-                        l.gravity_energy = grav;
-                        let (mut ce, mut fe, mut sw) = (0.0, 0.0, 0.0);
-                        for ((cp, h), out) in w.contacts.iter().zip(hist).zip(l.contacts.iter_mut())
-                        {
-                            let c = contact::evaluate(
-                                cp,
-                                h,
-                                &l.frames[cp.segment],
-                                core_frames,
-                                core_segs,
-                            );
-                            l.forces[cp.segment] += c.force_wire;
-                            l.torques[cp.segment] += c.torque_wire;
-                            ce += c.normal_energy;
-                            fe += c.tangential_energy;
-                            sw += c.slip_work;
-                            *out = c;
-                        }
-                        l.contact_energy = ce;
-                        l.friction_energy = fe;
-                        l.slip_work = sw;
-                    });
-            },
-        );
+                l.spring_energy = spring;
+                l.gravity_energy = grav;
+                if i == 0 {
+                    return;
+                }
+                let (mut ce, mut fe, mut sw) = (0.0, 0.0, 0.0);
+                let nc = w.contacts.len();
+                let (to_core, to_wires) = l.contacts.split_at_mut(nc);
+                for ((cp, h), out) in w.contacts.iter().zip(hist).zip(to_core) {
+                    let c =
+                        contact::evaluate(cp, h, &frames[cp.segment], &all_frames[0], core_segs);
+                    l.forces[cp.segment] += c.force_wire;
+                    l.torques[cp.segment] += c.torque_wire;
+                    ce += c.normal_energy;
+                    fe += c.tangential_energy;
+                    sw += c.slip_work;
+                    *out = c;
+                }
+                for ((lk, h), out) in w.links.iter().zip(&hist[nc..]).zip(to_wires.iter_mut()) {
+                    let k = lk.segment;
+                    *out = interlayer::evaluate(
+                        lk,
+                        h,
+                        &frames[k],
+                        w.chain.segments[k].length,
+                        &all_frames[lk.partner],
+                        &self.wires[lk.partner].chain.segments,
+                    );
+                }
+                // One contact per crossing at the chords' nodes.
+                let dropped = interlayer::duplicates(&w.links, |i| {
+                    let c = &to_wires[i];
+                    (c.state != ContactState::Open).then_some(c.normal_force)
+                });
+                for ((lk, out), drop) in w.links.iter().zip(to_wires.iter_mut()).zip(dropped) {
+                    if drop {
+                        *out = ContactLoad::open_at(out.core_segment);
+                    }
+                    let (k, c) = (lk.segment, *out);
+                    l.forces[k] += c.force_wire;
+                    l.torques[k] += c.torque_wire;
+                    ce += c.normal_energy;
+                    fe += c.tangential_energy;
+                    sw += c.slip_work;
+                }
+                l.contact_energy = ce;
+                l.friction_energy = fe;
+                l.slip_work = sw;
+            });
+        for (l, f) in loads.iter_mut().zip(frames) {
+            l.frames = f;
+        }
+        let core_poses = &state.wires[0].poses;
         // The core's share, in a fixed order.
         let (core, helical) = loads.split_at_mut(1);
         let core = &mut core[0];
-        for l in helical.iter() {
-            for c in &l.contacts {
+        for (w, l) in self.wires[1..].iter().zip(helical.iter()) {
+            for c in &l.contacts[..w.contacts.len()] {
                 core.forces[c.core_segment] += c.force_core;
                 core.torques[c.core_segment] += c.torque_core;
             }
         }
+        // The partners' share of the wire-to-wire contacts, in wire and link order.
+        for (i, w) in self.wires.iter().enumerate() {
+            let nc = w.contacts.len();
+            for (k, lk) in w.links.iter().enumerate() {
+                let c = loads[i].contacts[nc + k];
+                let p = &mut loads[lk.partner];
+                p.forces[c.core_segment] += c.force_core;
+                p.torques[c.core_segment] += c.torque_core;
+            }
+        }
+        let (core, helical) = loads.split_at_mut(1);
+        let core = &mut core[0];
         // Ties, in a fixed order; their energy is booked on the core.
         for t in &self.ties {
             let l = t.joint.evaluate(
@@ -621,6 +795,31 @@ impl FineModel {
     pub fn core_centreline(&self, state: &ModelState) -> Vec<Vector3<f64>> {
         self.wires[0].chain.centreline(&state.wires[0].poses)
     }
+}
+
+/// Neighbouring wires of a layer standing less than this many wire diameters apart (across
+/// the wires, `HelixLayer::wire_gap`) are given wire-to-wire links: bending and tension can
+/// close such a gap.
+pub const NEIGHBOUR_GAP: f64 = 0.05;
+
+/// Sag of the helical arc of `layer` over the chord of the segment at rest pose `rest` (m):
+/// the helix radius less the distance of the chord's midpoint from the strand axis.
+fn helix_sag(layer: &HelixLayer, rest: &Pose) -> f64 {
+    let p = rest.position;
+    (layer.radius - (p.y * p.y + p.z * p.z).sqrt()).max(0.0)
+}
+
+/// Segment of `chain` whose rest centre is nearest to the strand coordinate `x` (chains of a
+/// strand are laid in equal steps of x).
+fn rest_partner(chain: &Chain, x: f64) -> usize {
+    let n = chain.len();
+    let first = chain.rest[0].position.x;
+    let last = chain.rest[n - 1].position.x;
+    if n == 1 || last <= first {
+        return 0;
+    }
+    let k = ((x - first) / (last - first) * (n - 1) as f64).round();
+    (k.max(0.0) as usize).min(n - 1)
 }
 
 /// Poses and momenta of one wire's segments.

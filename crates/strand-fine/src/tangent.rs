@@ -70,6 +70,7 @@ impl FineModel {
     pub fn element_tangents(&self, state: &ModelState) -> Vec<ElementTangent> {
         let mut out = self.joint_tangents(state);
         out.extend(self.contact_tangents(state));
+        out.extend(self.link_tangents(state));
         out
     }
 
@@ -191,12 +192,14 @@ impl FineModel {
     /// `k_n`, `k_t` between the contact points of the wire and the paired core segment (for
     /// the stable time step).
     pub fn contact_bound_tangents(&self, state: &ModelState) -> Vec<ElementTangent> {
-        self.closed_contact_tangents(state, |c| {
+        let mut out = self.closed_contact_tangents(state, |c| {
             let law = &c.contact.law;
             let k = law.normal_stiffness.max(law.tangential_stiffness);
             let b = contact_jacobian(&(c.point - c.wire.position), &(c.point - c.core.position));
             Some(b.transpose() * b * k)
-        })
+        });
+        out.extend(self.link_bound_tangents(state));
+        out
     }
 
     /// Tangents of every contact as if closed and stuck, at `state`: the normal spring `k_n`
@@ -208,7 +211,7 @@ impl FineModel {
     /// in every direction at the wire's axis.
     pub fn contact_stick_tangents(&self, state: &ModelState) -> Vec<ElementTangent> {
         let core = &self.wires[0].chain;
-        self.closed_contact_tangents(state, |c| {
+        let mut out = self.closed_contact_tangents(state, |c| {
             let q =
                 contact::closest_on_axis(&c.point, c.core, core.segments[c.core_segment].length);
             let d = c.point - q;
@@ -223,7 +226,10 @@ impl FineModel {
             let spring = n * n.transpose() * (law.normal_stiffness - law.tangential_stiffness)
                 + Matrix3::identity() * law.tangential_stiffness;
             Some(b.transpose() * spring * b)
-        })
+        });
+        // Wire-to-wire links: the isotropic bound.
+        out.extend(self.link_bound_tangents(state));
+        out
     }
 
     /// The blocks `stiffness` gives for every contact closed at `state`, each on its wire
@@ -312,7 +318,10 @@ impl FineModel {
 /// Jacobian of the relative displacement of a contact point, wire side minus core side, with
 /// respect to (dx_w, dw_w, dx_c, dw_c), for the arms `arm_wire`, `arm_core` (m) from the
 /// segment centres.
-fn contact_jacobian(arm_wire: &Vector3<f64>, arm_core: &Vector3<f64>) -> SMatrix<f64, 3, 12> {
+pub(crate) fn contact_jacobian(
+    arm_wire: &Vector3<f64>,
+    arm_core: &Vector3<f64>,
+) -> SMatrix<f64, 3, 12> {
     let mut b = SMatrix::<f64, 3, 12>::zeros();
     b.fixed_view_mut::<3, 3>(0, 0)
         .copy_from(&Matrix3::identity());

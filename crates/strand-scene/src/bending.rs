@@ -20,8 +20,9 @@ use crate::scene::{MEMORY_LIMIT, Scene, fine_memory};
 pub struct BendingOptions {
     /// Axial tension T (N), applied first and held.
     pub tension: f64,
-    /// Curvatures of the load steps (1/m), increasing; empty: 10 values from 0.2 to 20 times
-    /// the smallest critical curvature of the section law at `tension`.
+    /// Curvatures of the load steps (1/m), each reached from the one before (a sequence that
+    /// turns back reverses the load); empty: 10 increasing values from 0.2 to 20 times the
+    /// smallest critical curvature of the section law at `tension`.
     pub curvatures: Vec<f64>,
     /// Strand length in pitches (at least 3).
     pub pitches: usize,
@@ -86,6 +87,38 @@ fn law_moment(law: &SectionLaw, strand: &Strand, eps: f64, kappa: f64) -> (f64, 
     (sum / STATIONS as f64, first)
 }
 
+/// The section law followed along a curvature path at `STATIONS` stations of one pitch, each
+/// with its committed slip state (a load reversal unloads the sliders).
+struct LawPath {
+    stations: Vec<strand_core::Station>,
+    slip: Vec<Vec<f64>>,
+    trial: Vec<f64>,
+}
+
+impl LawPath {
+    fn new(law: &SectionLaw, strand: &Strand) -> Self {
+        let pitch = strand.layers().first().map_or(strand.length(), |l| l.pitch);
+        Self {
+            stations: (0..STATIONS)
+                .map(|i| law.station(pitch * (i as f64 + 0.5) / STATIONS as f64))
+                .collect(),
+            slip: vec![vec![0.0; law.state_len()]; STATIONS],
+            trial: vec![0.0; law.state_len()],
+        }
+    }
+
+    /// The law's moment (N m) at strain `eps` and curvature `kappa` (1/m) reached from the
+    /// last point, averaged over the stations; commits the slip.
+    fn moment(&mut self, law: &SectionLaw, eps: f64, kappa: f64) -> f64 {
+        let mut sum = 0.0;
+        for (st, slip) in self.stations.iter().zip(&mut self.slip) {
+            sum += law.planar(st, eps, kappa, slip, &mut self.trial).moment;
+            slip.copy_from_slice(&self.trial);
+        }
+        sum / STATIONS as f64
+    }
+}
+
 /// Runs the virtual bending test on `scene`'s strand and writes `DIR/bending.csv` and
 /// `DIR/summary.json`; `progress` receives each measured point.
 pub fn run_bending(
@@ -97,12 +130,6 @@ pub fn run_bending(
     if strand.layers().is_empty() {
         return Err(invalid(
             "strand.layers: the bending test needs a helical layer",
-        ));
-    }
-    if strand.layers().len() > 1 {
-        return Err(invalid(
-            "strand.layers[1]: the bending test's fine model runs a strand of one helical layer \
-             (a 1+m strand)",
         ));
     }
     if !(opts.tension.is_finite() && opts.tension > 0.0) {
@@ -117,8 +144,7 @@ pub fn run_bending(
             opts.pitches, opts.segments_per_pitch
         )));
     }
-    let layer = strand.layers().first().expect("checked above");
-    let wires = 1 + layer.wires();
+    let wires = 1 + strand.helical_wires();
     let need = match opts.pitches.checked_mul(opts.segments_per_pitch) {
         Some(n) => fine_memory(n, wires),
         None => f64::INFINITY,
@@ -158,11 +184,12 @@ pub fn run_bending(
     } else {
         opts.curvatures.clone()
     };
-    if curvatures.iter().any(|k| !k.is_finite() || *k <= 0.0)
-        || curvatures.windows(2).any(|w| w[1] <= w[0])
+    if curvatures.iter().any(|k| !k.is_finite() || *k == 0.0)
+        || curvatures.windows(2).any(|w| w[1] == w[0])
     {
         return Err(invalid(format!(
-            "--curvatures must be positive and increasing, got {curvatures:?}"
+            "--curvatures must be finite and non-zero, each different from the one before, got \
+             {curvatures:?}"
         )));
     }
     let contact = ContactOptions {
@@ -215,8 +242,10 @@ pub fn run_bending(
     )
     .map_err(io_err(&path))?;
     let mut points = Vec::new();
-    for p in curve.iter().filter(|p| p.imposed_curvature > 0.0) {
-        let m_law = law_moment(&law, strand, eps, p.curvature).0;
+    let mut law_path = LawPath::new(&law, strand);
+    // The tension step (curvature zero) first, then the load steps.
+    for p in curve.iter().skip(1) {
+        let m_law = law_path.moment(&law, eps, p.curvature);
         csv.row(&[
             p.imposed_curvature,
             p.curvature,

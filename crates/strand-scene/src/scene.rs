@@ -1078,13 +1078,6 @@ fn beam(
 }
 
 fn fine(m: &FineModelFile, strand: &Strand) -> Result<FineModel, SceneError> {
-    if strand.layers().len() > 1 {
-        return Err(SceneError::new(
-            "strand.layers[1]",
-            "the fine model runs a strand of one helical layer (a 1+m strand); run a strand of \
-             several layers with the equivalent and traditional models",
-        ));
-    }
     let p = "models.fine.segments_per_wire";
     let segments_per_wire = count(p, m.segments_per_wire, 2, i64::MAX)?;
     let wires = 1 + strand.helical_wires();

@@ -68,9 +68,17 @@ fn bad_bending_input_names_the_option() {
             },
             "--tension",
         ),
+        // A repeated curvature and a zero one (a decreasing sequence reverses the load).
         (
             BendingOptions {
-                curvatures: vec![0.5, 0.1],
+                curvatures: vec![0.5, 0.5],
+                ..options(out.clone())
+            },
+            "--curvatures",
+        ),
+        (
+            BendingOptions {
+                curvatures: vec![0.5, 0.0],
                 ..options(out.clone())
             },
             "--curvatures",

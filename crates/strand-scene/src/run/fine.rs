@@ -117,8 +117,10 @@ pub(crate) fn run_fine(
     std::fs::create_dir_all(&dir).map_err(io_err(&dir))?;
 
     let mut built = vec![format!(
-        "finite-segment chains: core and {} helical wires, {n} rigid segments each ({} in all)",
+        "finite-segment chains: core and {} helical wires in {} layers, {n} rigid segments each \
+         ({} in all)",
         model.wires.len() - 1,
+        strand.layers().len(),
         model.segment_count()
     )];
     if let Some(end) = bound {
@@ -127,8 +129,8 @@ pub(crate) fn run_fine(
             if end == End::Start { "start" } else { "end" }
         ));
     }
-    let mut warnings = Vec::new();
-    if let Some(layer) = strand.layers().first() {
+    let warnings = Vec::new();
+    if !strand.layers().is_empty() {
         built.push(format!(
             "{} wire-to-core contacts (penalty for a penetration of {:.1e} wire diameters, \
              Coulomb friction mu = {} with stick springs)",
@@ -136,11 +138,12 @@ pub(crate) fn run_fine(
             m.penetration,
             strand.friction()
         ));
-        let gap = layer.wire_gap();
-        if gap <= 0.05 * layer.spec.wire.diameter {
-            warnings.push(format!(
-                "the helical wires are {gap:.3e} m apart: wire-to-wire contact in the layer is \
-                 not modelled"
+        if model.link_count() > 0 {
+            built.push(format!(
+                "{} wire-to-wire contact links (crossings and lines with the layer beneath, \
+                 neighbours closer than {} wire diameters in a layer; the same law)",
+                model.link_count(),
+                fine::NEIGHBOUR_GAP
             ));
         }
     }
@@ -720,6 +723,10 @@ fn write_state(
             "normal_force",
             "pressure",
             "friction_force",
+            "layer",
+            "partner_wire",
+            "partner_layer",
+            "kind",
         ],
     )
     .map_err(ec)?;
@@ -746,6 +753,37 @@ fn write_state(
                 number(cl.normal_force),
                 number(cl.normal_force / share),
                 number(cl.tangential_force.norm()),
+                wire.layer.to_string(),
+                "0".to_string(),
+                "0".to_string(),
+                "core".to_string(),
+            ])
+            .map_err(ec)?;
+        }
+        // Wire-to-wire links: the closed ones (a link is a segment against a whole partner
+        // wire; most are apart at any time), at the rest x of their contact point.
+        let nc = wire.contacts.len();
+        for (lk, cl) in wire.links.iter().zip(&l.contacts[nc..]) {
+            if cl.state == ContactState::Open {
+                continue;
+            }
+            let s = wire.chain.rest[lk.segment].point(&cl.history.on_wire).x;
+            let state = if cl.state == ContactState::Stick {
+                "stick"
+            } else {
+                "slip"
+            };
+            cc.text_row(&[
+                number(s),
+                w.to_string(),
+                state.to_string(),
+                number(cl.normal_force),
+                number(cl.normal_force / lk.length),
+                number(cl.tangential_force.norm()),
+                wire.layer.to_string(),
+                lk.partner.to_string(),
+                model.wires[lk.partner].layer.to_string(),
+                lk.kind.name().to_string(),
             ])
             .map_err(ec)?;
         }
