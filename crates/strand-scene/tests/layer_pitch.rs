@@ -33,7 +33,10 @@ fn given_pitches_hold_on_lifted_and_stacked_radii() {
     }"#;
     let scene = Scene::parse(text).unwrap();
     let layers = scene.strand.layers();
-    assert!(layers[0].lift > 1e-5, "the steel layer is closed and lifted");
+    assert!(
+        layers[0].lift > 1e-5,
+        "the steel layer is closed and lifted"
+    );
     for (l, want) in layers.iter().zip([0.2104, 0.2166, 0.3029, 0.3593]) {
         let pitch = 2.0 * PI * l.radius / l.lay_angle().tan();
         assert!(

@@ -129,7 +129,16 @@ pub(crate) fn run_fine(
             if end == End::Start { "start" } else { "end" }
         ));
     }
-    let warnings = Vec::new();
+    let mut warnings = Vec::new();
+    if let [layer] = strand.layers() {
+        let gap = layer.wire_gap();
+        if gap <= fine::NEIGHBOUR_GAP * layer.spec.wire.diameter {
+            warnings.push(format!(
+                "the helical wires are {gap:.3e} m apart: wire-to-wire contact in the layer is \
+                 not modelled in a 1+m strand"
+            ));
+        }
+    }
     if !strand.layers().is_empty() {
         built.push(format!(
             "{} wire-to-core contacts (penalty for a penetration of {:.1e} wire diameters, \
