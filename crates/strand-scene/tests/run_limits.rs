@@ -69,12 +69,21 @@ fn csv_files(dir: &Path) -> Vec<(PathBuf, Vec<String>, Vec<Vec<String>>)> {
 }
 
 /// No file below `dir` holds `NaN` or `inf`, and every CSV field is a number, except the
-/// critical curvature of a wire that never slips (empty).
+/// critical curvature of a wire that never slips (empty), the states, and a contact's kind
+/// (one of the names `contacts.csv` documents).
 fn assert_clean(dir: &Path) {
     for (p, header, rows) in csv_files(dir) {
         for r in &rows {
             for (h, f) in header.iter().zip(r) {
                 if h == "state" || (h == "critical_curvature" && f.is_empty()) {
+                    continue;
+                }
+                if h == "kind" {
+                    assert!(
+                        ["core", "crossing", "line", "neighbour"].contains(&f.as_str()),
+                        "{}: kind = `{f}`",
+                        p.display()
+                    );
                     continue;
                 }
                 let v: f64 = f
