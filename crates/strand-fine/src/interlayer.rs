@@ -35,7 +35,7 @@
 //! crossings along the wire, `1 / (m_b |1/P_a +- 1/P_b| / cos(alpha_a))`, where that is
 //! shorter (see [`crate::ContactOptions::stiffness_per_length`]).
 
-use nalgebra::{SMatrix, Vector3};
+use nalgebra::Vector3;
 use rayon::prelude::*;
 use strand_core::{Contact, HelixLayer};
 
@@ -43,7 +43,7 @@ use crate::contact::{self, ContactHistory, ContactLaw, ContactLoad, ContactState
 use crate::joint::perturb;
 use crate::model::{FineModel, ModelState};
 use crate::segment::{Frame, Placement, Pose, Segment};
-use crate::tangent::{ElementTangent, contact_jacobian};
+use crate::tangent::{ElementTangent, contact_difference, contact_jacobian};
 
 /// What a link touches.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -438,36 +438,7 @@ impl FineModel {
                 if c0.state == ContactState::Open {
                     return None;
                 }
-                let law = &c.link.law;
-                let mut margin = c0.normal_force / law.normal_stiffness;
-                let cap = law.friction * c0.normal_force;
-                if cap > 0.0 {
-                    margin = margin.min(match c0.state {
-                        ContactState::Slip => c0.slip_work / cap,
-                        _ => (cap - c0.tangential_force.norm()) / law.tangential_stiffness,
-                    });
-                }
-                let step_x0 = 1e-7 * 0.5 * c.link.radii;
-                let shrink = (0.1 * margin / step_x0).clamp(1e-5, 1.0);
-                let step_x = step_x0 * shrink;
-                let mut k = SMatrix::<f64, 12, 12>::zeros();
-                for col in 0..12 {
-                    let h = if col % 6 < 3 { step_x } else { 1e-7 * shrink };
-                    let (lp, lm) = (eval(col, h), eval(col, -h));
-                    for (blk, (x, y)) in [
-                        (lp.force_wire, lm.force_wire),
-                        (lp.torque_wire, lm.torque_wire),
-                        (lp.force_core, lm.force_core),
-                        (lp.torque_core, lm.torque_core),
-                    ]
-                    .iter()
-                    .enumerate()
-                    {
-                        for r in 0..3 {
-                            k[(3 * blk + r, col)] = -(x[r] - y[r]) / (2.0 * h);
-                        }
-                    }
-                }
+                let k = contact_difference(&c0, &c.link.law, 1e-7 * 0.5 * c.link.radii, eval);
                 Some(ElementTangent {
                     segments: c.global.map(Some),
                     stiffness: k,

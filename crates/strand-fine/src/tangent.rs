@@ -142,41 +142,8 @@ impl FineModel {
                         });
                         continue;
                     }
-                    // Steps: 1e-7 of the wire radius (and 1e-7 rad), shrunk to a tenth of the
-                    // distance to the nearest switch of the law (the penalty's kink at zero
-                    // gap, the stick-slip limit), so that the differences stay on one branch.
                     let c0 = eval(0, 0.0);
-                    let law = &cp.law;
-                    let mut margin = c0.normal_force / law.normal_stiffness;
-                    let cap = law.friction * c0.normal_force;
-                    if cap > 0.0 {
-                        margin = margin.min(match c0.state {
-                            contact::ContactState::Slip => c0.slip_work / cap,
-                            _ => (cap - c0.tangential_force.norm()) / law.tangential_stiffness,
-                        });
-                    }
-                    let step_x0 = 1e-7 * w.chain.section.radius;
-                    let shrink = (0.1 * margin / step_x0).clamp(1e-5, 1.0);
-                    let step_x = step_x0 * shrink;
-                    let mut k = SMatrix::<f64, 12, 12>::zeros();
-                    for col in 0..12 {
-                        let hstep = if col % 6 < 3 { step_x } else { 1e-7 * shrink };
-                        let lp = eval(col, hstep);
-                        let lm = eval(col, -hstep);
-                        for (blk, (a, b)) in [
-                            (lp.force_wire, lm.force_wire),
-                            (lp.torque_wire, lm.torque_wire),
-                            (lp.force_core, lm.force_core),
-                            (lp.torque_core, lm.torque_core),
-                        ]
-                        .iter()
-                        .enumerate()
-                        {
-                            for r in 0..3 {
-                                k[(3 * blk + r, col)] = -(a[r] - b[r]) / (2.0 * hstep);
-                            }
-                        }
-                    }
+                    let k = contact_difference(&c0, &cp.law, 1e-7 * w.chain.section.radius, eval);
                     out.push(ElementTangent {
                         segments: [Some(off + cp.segment), Some(j)],
                         stiffness: k,
@@ -332,4 +299,46 @@ pub(crate) fn contact_jacobian(
     b.fixed_view_mut::<3, 3>(0, 9)
         .copy_from(&arm_core.cross_matrix());
     b
+}
+
+/// Central differences of a contact element's loads over the 12 coordinates of its two
+/// segments, `-dQ/dq` (N/m, N, N m per rad): `eval(col, h)` gives the loads with coordinate
+/// `col` moved by `h`. Steps of `step_x0` (m) and 1e-7 rad, shrunk to a tenth of the distance
+/// from `c0` to the nearest switch of the law (the penalty's kink at zero gap, the stick-slip
+/// limit), so that the differences stay on one branch.
+pub(crate) fn contact_difference(
+    c0: &ContactLoad,
+    law: &contact::ContactLaw,
+    step_x0: f64,
+    eval: impl Fn(usize, f64) -> ContactLoad,
+) -> SMatrix<f64, 12, 12> {
+    let mut margin = c0.normal_force / law.normal_stiffness;
+    let cap = law.friction * c0.normal_force;
+    if cap > 0.0 {
+        margin = margin.min(match c0.state {
+            contact::ContactState::Slip => c0.slip_work / cap,
+            _ => (cap - c0.tangential_force.norm()) / law.tangential_stiffness,
+        });
+    }
+    let shrink = (0.1 * margin / step_x0).clamp(1e-5, 1.0);
+    let step_x = step_x0 * shrink;
+    let mut k = SMatrix::<f64, 12, 12>::zeros();
+    for col in 0..12 {
+        let h = if col % 6 < 3 { step_x } else { 1e-7 * shrink };
+        let (lp, lm) = (eval(col, h), eval(col, -h));
+        for (blk, (x, y)) in [
+            (lp.force_wire, lm.force_wire),
+            (lp.torque_wire, lm.torque_wire),
+            (lp.force_core, lm.force_core),
+            (lp.torque_core, lm.torque_core),
+        ]
+        .iter()
+        .enumerate()
+        {
+            for r in 0..3 {
+                k[(3 * blk + r, col)] = -(x[r] - y[r]) / (2.0 * h);
+            }
+        }
+    }
+    k
 }
