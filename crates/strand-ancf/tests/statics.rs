@@ -15,6 +15,25 @@ fn strand(length: f64, e: f64, rho: f64, layer: bool) -> Strand {
 }
 
 fn cantilever(law: SectionLaw, elements: usize, mu: f64, g: f64) -> Beam {
+    held(
+        law,
+        elements,
+        mu,
+        [0.0, -g, 0.0],
+        Some(Support::Clamped),
+        None,
+    )
+}
+
+/// A planar beam along +x with the given gravity and supports.
+fn held(
+    law: SectionLaw,
+    elements: usize,
+    mu: f64,
+    gravity: [f64; 3],
+    start: Option<Support>,
+    end: Option<Support>,
+) -> Beam {
     Beam::new(
         BeamSpec {
             elements,
@@ -22,9 +41,9 @@ fn cantilever(law: SectionLaw, elements: usize, mu: f64, g: f64) -> Beam {
             mass_per_length: mu,
             element: ElementKind::Planar,
             direction: [1.0, 0.0, 0.0],
-            gravity: [0.0, -g, 0.0],
-            start: Some(Support::Clamped),
-            end: None,
+            gravity,
+            start,
+            end,
             ..Default::default()
         },
         law,
@@ -261,21 +280,7 @@ fn supports_at_both_ends() {
         // stays far below the load.
         let law = SectionLaw::constant(&s, 1.0, 1.0e5);
         let q = 1e-3;
-        let beam = Beam::new(
-            BeamSpec {
-                elements: 8,
-                bending_points: None,
-                mass_per_length: 1.0,
-                element: ElementKind::Planar,
-                direction: [1.0, 0.0, 0.0],
-                gravity: [0.0, -q, 0.0],
-                start: Some(support),
-                end: Some(support),
-                ..Default::default()
-            },
-            law,
-        )
-        .unwrap();
+        let beam = held(law, 8, 1.0, [0.0, -q, 0.0], Some(support), Some(support));
         let sol = solve_static(&beam, &StaticOptions::default(), &mut |_| {}).unwrap();
         let (mid, _) = beam.sample(&sol.q, 0.5);
         let want = factor * q / 384.0;
@@ -542,21 +547,14 @@ fn tiny_axial_loads_on_a_strand_held_at_its_far_end() {
             for g in [2.9e-4, -2.9e-4, 1e-9, 10.0] {
                 let law = SectionLaw::new(&s, kind);
                 let ea = law.axial_stiffness();
-                let beam = Beam::new(
-                    BeamSpec {
-                        elements,
-                        bending_points: None,
-                        mass_per_length: mu,
-                        element: ElementKind::Planar,
-                        direction: [1.0, 0.0, 0.0],
-                        gravity: [g, 0.0, 0.0],
-                        start: None,
-                        end: Some(Support::Clamped),
-                        ..Default::default()
-                    },
+                let beam = held(
                     law,
-                )
-                .unwrap();
+                    elements,
+                    mu,
+                    [g, 0.0, 0.0],
+                    None,
+                    Some(Support::Clamped),
+                );
                 let sol = solve_static(&beam, &StaticOptions::default(), &mut |_| {})
                     .unwrap_or_else(|e| panic!("{kind}, {elements} elements, g = {g:e}: {e}"));
                 let (p, _) = beam.sample(&sol.q, 0.0);
