@@ -373,7 +373,9 @@ impl FineModel {
     /// segment of wire `i` with wire `i + 1` (cyclically, for three wires or more). A `1+m`
     /// strand keeps the model its validation measured, without neighbour links (the scene
     /// runner warns where its gap is that small): with them the `vs-fine-12deg` cantilever,
-    /// 7.6e-6 m between neighbours, took minutes instead of seconds and its reference moved. Stiffnesses: the outer wire's line
+    /// 7.6e-6 m between neighbours, took minutes instead of seconds and its reference moved.
+    /// Normal stiffness: per unit length from the allowed strain relief ([`crate::penalty`],
+    /// [`ContactOptions::relief_on`]), or else the outer wire's line
     /// pressure under the reference tension of `options` (taken as the first layer's wire
     /// tension, carried to every layer at the same strand strain) at the allowed penetration,
     /// over the wire length each link stands for; the stick stiffness per unit length of the
