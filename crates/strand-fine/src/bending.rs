@@ -440,6 +440,23 @@ impl BendingTest {
         }
     }
 
+    /// Axial force of every wire at the clamp (x = 0) at `state`, from its clamp reaction, in
+    /// model wire order (N).
+    pub fn clamp_tensions(model: &FineModel, state: &ModelState) -> Vec<f64> {
+        model
+            .wires
+            .iter()
+            .zip(&state.wires)
+            .map(|(w, s)| {
+                w.anchors
+                    .iter()
+                    .filter(|a| a.segment == 0)
+                    .map(|a| -a.joint.evaluate(&a.ground, &s.poses[a.segment]).force_b.x)
+                    .sum()
+            })
+            .collect()
+    }
+
     fn measure(
         &self,
         model: &FineModel,

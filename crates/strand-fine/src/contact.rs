@@ -67,6 +67,24 @@ pub struct ContactOptions {
     /// tilts and twists the wire's section. A study option: `Some(R_w)` puts it on the
     /// wire's axis (no eccentricity on the wire, arm R_w on the core).
     pub contact_radius: Option<f64>,
+    /// How the normal penalty is set; default [`NormalPenalty::ByLayers`].
+    pub normal_penalty: NormalPenalty,
+}
+
+/// Rule of the contacts' normal penalty.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum NormalPenalty {
+    /// [`NormalPenalty::StrainRelief`] at [`crate::penalty::DEFAULT_STRAIN_RELIEF`] on a strand
+    /// of several layers; [`NormalPenalty::Penetration`] on a `1+m` strand, which the
+    /// one-layer validation measured.
+    #[default]
+    ByLayers,
+    /// `penetration d_w` at the reference tension ([`ContactOptions`]).
+    Penetration,
+    /// Every interface sinks by at most this relief (-) of each layer's strain, at any
+    /// tension ([`crate::penalty`]); `penetration` then only sets where a wire-to-wire
+    /// contact turns from a crossing into a line.
+    StrainRelief(f64),
 }
 
 impl Default for ContactOptions {
@@ -79,11 +97,24 @@ impl Default for ContactOptions {
             friction: None,
             points_per_segment: 2,
             contact_radius: None,
+            normal_penalty: NormalPenalty::ByLayers,
         }
     }
 }
 
 impl ContactOptions {
+    /// The strain relief that sets the normal penalty on `strand` (see
+    /// [`ContactOptions::normal_penalty`]), `None` for the penetration rule.
+    pub fn relief_on(&self, strand: &strand_core::Strand) -> Option<f64> {
+        match self.normal_penalty {
+            NormalPenalty::ByLayers => {
+                (strand.layers().len() > 1).then_some(crate::penalty::DEFAULT_STRAIN_RELIEF)
+            }
+            NormalPenalty::Penetration => None,
+            NormalPenalty::StrainRelief(f) => Some(f),
+        }
+    }
+
     /// Normal and tangential stiffness of the contacts per unit length of a helical wire of
     /// `layer` (N/m^2): `T_w sin^2(alpha) / (R_w penetration d_w)` and
     /// `E_w A_w q^2 / stick_loss` (see [`ContactOptions`]).

@@ -29,9 +29,11 @@
 //! * Law: gap `g = |p' - q'| - (r_a + r_b) - g_0` between the arc points `p'`, `q'`, with `g_0`
 //!   the link's rest gap where the lay geometry overlaps (else 0); the law is `contact::respond`, shared with the wire-to-core contact.
 //!
-//! Stiffness (N/m): the normal penalty carries the outer wire's line pressure
-//! `T_w sin^2(alpha) / R_w` over the wire length the link stands for, `l_eff`, at the allowed
-//! penetration; `l_eff` is the segment length for line contacts and the distance between
+//! Stiffness (N/m): the normal penalty per unit wire length of the interface
+//! ([`crate::penalty`], from the allowed relief of the wire strain; or, with
+//! [`crate::NormalPenalty::Penetration`], the outer wire's line pressure
+//! `T_w sin^2(alpha) / R_w` at the allowed penetration) over the wire length the link stands
+//! for, `l_eff`; `l_eff` is the segment length for line contacts and the distance between
 //! crossings along the wire, `1 / (m_b |1/P_a +- 1/P_b| / cos(alpha_a))`, where that is
 //! shorter (see [`crate::ContactOptions::stiffness_per_length`]).
 

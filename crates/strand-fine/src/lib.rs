@@ -41,6 +41,7 @@ pub mod interlayer;
 pub mod joint;
 pub mod model;
 pub mod motion;
+pub mod penalty;
 pub mod segment;
 pub mod settle;
 pub mod so3;
@@ -53,6 +54,7 @@ pub use bending::{BendingError, BendingPoint, BendingTest};
 pub use chain::{Chain, WireSection};
 pub use contact::{
     ContactHistory, ContactLaw, ContactLoad, ContactOptions, ContactPoint, ContactState,
+    NormalPenalty,
 };
 pub use dynamics::{Integrator, stable_time_step};
 pub use joint::{JointLoad, JointSpring, JointStiffness};

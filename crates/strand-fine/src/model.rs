@@ -24,6 +24,7 @@ use crate::contact::{
 };
 use crate::interlayer::{self, LinkKind, WireLink};
 use crate::joint::{JointSpring, JointStiffness};
+use crate::penalty;
 use crate::segment::{Frame, Placement, Pose};
 
 /// Boundary condition at one end of the strand.
@@ -313,7 +314,13 @@ impl FineModel {
     /// The wire-to-core contact points of the first layer's wires.
     fn add_core_contacts(&mut self, strand: &Strand, layer: &HelixLayer, options: &ContactOptions) {
         let wire = &layer.spec.wire;
-        let (normal_per_length, shear_per_length) = options.stiffness_per_length(layer);
+        let (mut normal_per_length, shear_per_length) = options.stiffness_per_length(layer);
+        if let Some(k) = options
+            .relief_on(strand)
+            .and_then(|f| penalty::normal_stiffness_per_length(strand, f)[0])
+        {
+            normal_per_length = k;
+        }
         let friction = options.friction.unwrap_or(strand.friction());
         let n_pts = options.points_per_segment.clamp(1, 2);
         let (rc, rw) = (strand.core().radius(), wire.radius());
@@ -366,7 +373,9 @@ impl FineModel {
     /// segment of wire `i` with wire `i + 1` (cyclically, for three wires or more). A `1+m`
     /// strand keeps the model its validation measured, without neighbour links (the scene
     /// runner warns where its gap is that small): with them the `vs-fine-12deg` cantilever,
-    /// 7.6e-6 m between neighbours, took minutes instead of seconds and its reference moved. Stiffnesses: the outer wire's line
+    /// 7.6e-6 m between neighbours, took minutes instead of seconds and its reference moved.
+    /// Normal stiffness: per unit length from the allowed strain relief ([`crate::penalty`],
+    /// [`ContactOptions::relief_on`]), or else the outer wire's line
     /// pressure under the reference tension of `options` (taken as the first layer's wire
     /// tension, carried to every layer at the same strand strain) at the allowed penetration,
     /// over the wire length each link stands for; the stick stiffness per unit length of the
@@ -392,6 +401,9 @@ impl FineModel {
                 t / wire_tension(first_layer, 1.0)
             });
         let friction = options.friction.unwrap_or(strand.friction());
+        let strained = options
+            .relief_on(strand)
+            .map(|f| penalty::normal_stiffness_per_length(strand, f));
         let mut first = Vec::with_capacity(layers.len());
         let mut n = 1;
         for l in layers {
@@ -408,7 +420,10 @@ impl FineModel {
                 reference_tension: Some(wire_tension(outer, eps)),
                 ..*options
             };
-            let (normal_per_length, shear_per_length) = opts.stiffness_per_length(outer);
+            let (mut normal_per_length, shear_per_length) = opts.stiffness_per_length(outer);
+            if let Some(k) = strained.as_ref().and_then(|k| k[j]) {
+                normal_per_length = k;
+            }
             let ra = outer.spec.wire.radius();
             let delta = options.penetration * outer.spec.wire.diameter;
             // Partners: (first wire, wire count, radius, kind, crossing distance along the
@@ -481,7 +496,7 @@ impl FineModel {
                                 guess,
                             );
                             if (-0.5 * la..0.5 * la).contains(&ap.s) {
-                                link.rest_gap = ap.gap(&link).min(0.0);
+                                link.rest_gap = rest_gap(&link, &ap, outer);
                             }
                             links.push(link);
                         }
@@ -807,6 +822,38 @@ impl FineModel {
 /// the wires, `HelixLayer::wire_gap`) are given wire-to-wire links: bending and tension can
 /// close such a gap.
 pub const NEIGHBOUR_GAP: f64 = 0.05;
+
+/// Largest gap of a lay-geometry contact seen through the chords, as a share of the two
+/// arcs' sags (-): measured on the 1+6+12 strand at 8, 12 and 24 segments per pitch, the
+/// crossings' gaps are 0.017, 0.012 and 0.012 of the sags, while the closest approaches that
+/// are no crossing stand off by 0.35 of them or more (`probe_rest_gaps` in
+/// `tests/multilayer.rs`; the test `rest_gaps_close_exactly_the_crossings` checks that the
+/// links given a positive rest gap are the crossings of the lay phases).
+pub const CHORD_GAP_SHARE: f64 = 0.1;
+
+/// Rest gap of `link` of a wire of `outer` owning the approach `ap` in the lay geometry (m):
+/// the lay geometry is the unloaded equilibrium the section law assumes, so the contacts it
+/// makes touch with zero gap and zero force. A wire on the layer beneath
+/// touches it on the stacked radius, or stands off by the lift of a closed layer, which the
+/// section law takes as in contact (`strand_core` module `stack`); through the chords the
+/// approach's gap is off by a small share of the two arcs' sags, so every gap up to the lift
+/// plus [`CHORD_GAP_SHARE`] of the sags is that contact and is taken as the rest gap (any
+/// positive gap left would let the layer sink before it carries pressure, relieving its
+/// wires' strain: a sink of 5e-7 m unloads the outer wires of a 1+6+12 steel strand at
+/// 100 N). Only crossings: along a line contact (same lay) the gap grows so slowly from the
+/// crossing of the lay phases that the links of the segments around it would be taken as
+/// touching too (86 links for 72 crossings on the same-lay 1+6+12 strand at 120 segments over
+/// 0.6 m): line contacts and neighbours keep their gap (open). An overlap is always taken as
+/// the rest gap.
+fn rest_gap(link: &WireLink, ap: &interlayer::Approach, outer: &HelixLayer) -> f64 {
+    let gap = ap.gap(link);
+    let chord_error = CHORD_GAP_SHARE * (link.sag + link.partner_sag) + outer.lift;
+    if link.kind == LinkKind::Crossing && gap <= chord_error {
+        gap
+    } else {
+        gap.min(0.0)
+    }
+}
 
 /// Sag of the helical arc of `layer` over the chord of the segment at rest pose `rest` (m):
 /// the helix radius less the distance of the chord's midpoint from the strand axis.

@@ -4,7 +4,9 @@ use nalgebra::{DMatrix, DVector, Vector3};
 use strand_core::BaseStiffness;
 use strand_core::{LayDirection, LayerSpec, Material, Strand, StrandSpec, WireSpec};
 use strand_fine::interlayer::{self, LinkKind};
-use strand_fine::{BendingTest, ContactOptions, Discretisation, FineModel, ModelState, Support};
+use strand_fine::{
+    BendingTest, ContactOptions, Discretisation, FineModel, ModelState, NormalPenalty, Support,
+};
 
 fn steel() -> Material {
     Material {
@@ -166,6 +168,14 @@ fn probe_frictionless_1x19() {
         env("T", 0.1),
         env("K", 0.1),
     );
+    test.max_halvings = env("HALVINGS", 6.0) as usize;
+    // RELIEF: the strain-relief penalty at that relief, 0: the penetration rule.
+    let relief = env("RELIEF", -1.0);
+    if relief == 0.0 {
+        test.contact.normal_penalty = NormalPenalty::Penetration;
+    } else if relief > 0.0 {
+        test.contact.normal_penalty = NormalPenalty::StrainRelief(relief);
+    }
     // With friction (MU), curvatures K/4, K/2, K, back to -K and up to K again.
     test.friction = env("MU", 0.0);
     if test.friction > 0.0 {
@@ -176,8 +186,27 @@ fn probe_frictionless_1x19() {
         .run_with_progress(&s, &mut |p| {
             println!("{p:?} at {:.1} s", start.elapsed().as_secs_f64())
         })
-        .expect("bending test")
-        .0;
+        .unwrap_or_else(|e| panic!("bending test: {e}"));
+    let (curve, m, state) = curve;
+    let tensions = BendingTest::clamp_tensions(&m, &state);
+    let t = test.tension;
+    let ea = s.axial_stiffness();
+    let mut w = 1;
+    println!(
+        "core: {:.4} of T, share {:.4}",
+        tensions[0] / t,
+        s.core().material.youngs_modulus * s.core().area() / ea
+    );
+    for (j, l) in s.layers().iter().enumerate() {
+        let sum: f64 = tensions[w..w + l.wires()].iter().sum();
+        println!(
+            "layer {}: {:.4} of T, share {:.4}",
+            j + 1,
+            sum / t,
+            l.wires() as f64 * l.wire_axial_stiffness() / ea
+        );
+        w += l.wires();
+    }
     let k = curve.last().unwrap().secant_stiffness();
     println!(
         "K = {k:.6e} N m^2 = {:.5} K_min (Costello), {:.1} s",
@@ -280,15 +309,19 @@ fn link_tangent_matches_the_change_of_the_loads() {
 /// (Costello's wire stiffness, `Strand::min_bending_stiffness`) within 1 %, converged in the
 /// segment length. Measured (`probe_frictionless_1x19`, SPP = 8, 12, 16, 24, 32): 1.00093,
 /// 1.00069, 1.00056, 1.00043, 1.00037 K_min; the test runs 12 and 24 and asks them within
-/// 2e-3 of each other (a fifth of the tolerance).
+/// 2e-3 of each other (a fifth of the tolerance). The penalty is the penetration rule at the
+/// test's tension: with the strain-relief penalty, stiff at any tension, Newton does not
+/// converge on the tension step at 12 segments per pitch and 0.1 N (scaled residual 1.3e-2;
+/// `RELIEF=1e-2 SPP=12 T=0.1 HALVINGS=0` on the probe; open).
 #[test]
 fn frictionless_1x19_bends_with_the_sum_of_thin_rod_k_min() {
     let mut spec = strand_1x19(1.0, false).spec().clone();
     spec.friction = 0.0;
     let s = Strand::new(spec).unwrap();
     let k = |spp: usize| {
-        BendingTest::frictionless(3, spp, 0.1, 0.1)
-            .run(&s)
+        let mut test = BendingTest::frictionless(3, spp, 0.1, 0.1);
+        test.contact.normal_penalty = NormalPenalty::Penetration;
+        test.run(&s)
             .expect("bending test")
             .last()
             .unwrap()
@@ -330,8 +363,9 @@ fn frictionless_steel_aluminium_section_bends_with_the_sum_of_thin_rod_k_min() {
     })
     .unwrap();
     let k = |spp: usize| {
-        BendingTest::frictionless(3, spp, 0.1, 0.1)
-            .run(&s)
+        let mut test = BendingTest::frictionless(3, spp, 0.1, 0.1);
+        test.contact.normal_penalty = NormalPenalty::Penetration;
+        test.run(&s)
             .expect("bending test")
             .last()
             .unwrap()
@@ -406,5 +440,149 @@ fn link_loads_do_not_depend_on_the_thread_count() {
     for (a, b) in one.iter().zip(&three) {
         assert_eq!(a.forces, b.forces);
         assert_eq!(a.torques, b.torques);
+    }
+}
+
+/// Band of the tension shares in `wires_carry_their_share_of_the_tension`: the 5 % to which
+/// the fine and equivalent moment-curvature curves are to agree (issue target), not an error
+/// bound of the model.
+const SHARE_BAND: f64 = 0.05;
+
+/// The wires carry their share of the tension: the 1+6+12 steel strand pulled to 100 N
+/// (strain 3.7e-6, the plate's imposed strain) in the virtual bending test, 8 segments per
+/// pitch. Each layer's clamp force against its share of the axial stiffness, `m E_w A_w
+/// cos^3(alpha_c) eps` with the chords' lay angle `tan(alpha_c) = tan(alpha) sinc(dphi / 2)`
+/// (the chain's own geometry), and the core's `E_c A_c eps`: no layer above its share, none
+/// more than [`SHARE_BAND`] below. Measured: core 1.00000, layers 0.9727 and 0.9832 of their
+/// shares. The penalty allows each layer to lose 1 % (`penalty::DEFAULT_STRAIN_RELIEF`); the
+/// rest (layer 1 loses 2.7 % with the relief at 1e-3 as at 1e-2) is not the penalty and is
+/// not explained (open). With the penetration rule (1e-3 d at this tension, the state before
+/// the strain-relief penalty and the rest gaps) the layers carry 0.20 and 0.03 of their
+/// shares and the test fails.
+#[test]
+fn wires_carry_their_share_of_the_tension() {
+    let s = strand_1x19(1.0, false);
+    let tension = 100.0;
+    let spp = 8;
+    let test = BendingTest {
+        curvatures: Vec::new(),
+        ..BendingTest::frictionless(3, spp, tension, 0.0)
+    };
+    let (_, m, state) = test.run_with_state(&s).expect("tension step");
+    let forces = BendingTest::clamp_tensions(&m, &state);
+    let eps = tension / s.axial_stiffness();
+    let dphi = 2.0 * std::f64::consts::PI / spp as f64;
+    let mut expected = vec![s.core().material.youngs_modulus * s.core().area() * eps];
+    for l in s.layers() {
+        // The layer's pitch is a whole share of the test's; its segments turn by dphi times
+        // the ratio of the pitches.
+        let turn = dphi * s.layers()[1].pitch / l.pitch;
+        let half = 0.5 * turn;
+        let chord = (l.lay_angle().tan() * half.sin() / half).atan();
+        let w = &l.spec.wire;
+        let ea = w.material.youngs_modulus * w.area();
+        expected.push(l.wires() as f64 * ea * chord.cos().powi(3) * eps);
+    }
+    let mut w = 1;
+    let mut carried = vec![forces[0]];
+    for l in s.layers() {
+        carried.push(forces[w..w + l.wires()].iter().sum());
+        w += l.wires();
+    }
+    for (j, (c, e)) in carried.iter().zip(&expected).enumerate() {
+        println!("layer {j}: {c:.4} N of {e:.4} N ({:.5})", c / e);
+    }
+    // The core is held at the plate's strain and carries its share exactly (no friction).
+    assert!(
+        (carried[0] / expected[0] - 1.0).abs() < 1e-6,
+        "core {}",
+        carried[0]
+    );
+    for (j, (c, e)) in carried.iter().zip(&expected).enumerate().skip(1) {
+        assert!(
+            *c <= e * (1.0 + 1e-6) && *c >= e * (1.0 - SHARE_BAND),
+            "layer {j}: {c} N, share {e} N"
+        );
+    }
+}
+
+#[test]
+#[ignore = "exploration: rest gaps by SPP"]
+fn probe_rest_gaps() {
+    let spp: usize = std::env::var("SPP")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(12);
+    let s = strand_1x19(1.0, false);
+    let pitch = s.layers()[1].pitch;
+    let s = Strand::new(StrandSpec {
+        length: 3.0 * pitch,
+        ..s.spec().clone()
+    })
+    .unwrap();
+    let m = model(&s, 3 * spp, &ContactOptions::default());
+    let mut pos = Vec::new();
+    for w in &m.wires {
+        for l in &w.links {
+            if l.rest_gap > 0.0 {
+                pos.push((l.rest_gap, l.sag + l.partner_sag, l.segment));
+            }
+        }
+    }
+    let (outer, inner) = (&s.layers()[1], &s.layers()[0]);
+    let geometric: usize = (0..outer.wires())
+        .map(|i| interlayer::geometric_crossings(outer, i, inner, 0.0, s.length()))
+        .sum();
+    let found = touching(&m, &m.rest_state(), 1e-9).len();
+    println!(
+        "{} links with a rest gap, {geometric} crossings, {found} touching",
+        pos.len()
+    );
+    let mx = pos.iter().fold(0.0f64, |a, p| a.max(p.0));
+    let mn = pos.iter().fold(0.0f64, |a, p| a.min(p.0));
+    println!("rest gaps {mn:e} .. {mx:e}, sags {:e}", pos[0].1);
+    pos.sort_by(|a, b| b.0.partial_cmp(&a.0).unwrap());
+    println!(
+        "largest: {:?}",
+        pos.iter()
+            .take(40)
+            .map(|p| format!("{:.2e}", p.0))
+            .collect::<Vec<_>>()
+    );
+}
+
+/// The settle's stable step (0.9 x 2 / omega_max, every contact closed and stuck) of the
+/// 1+6+12 strand, 3 outer pitches at SPP segments per pitch, under each normal penalty.
+#[test]
+#[ignore = "exploration: stable step by penalty rule"]
+fn probe_stable_step() {
+    let spp: usize = std::env::var("SPP")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(12);
+    let s = strand_1x19(1.0, false);
+    let pitch = s.layers()[1].pitch;
+    let s = Strand::new(StrandSpec {
+        length: 3.0 * pitch,
+        ..s.spec().clone()
+    })
+    .unwrap();
+    for (name, penalty) in [
+        (
+            "penetration 1e-3 d at strain 1e-3",
+            NormalPenalty::Penetration,
+        ),
+        ("strain relief 1e-2", NormalPenalty::StrainRelief(1e-2)),
+        ("strain relief 1e-3", NormalPenalty::StrainRelief(1e-3)),
+    ] {
+        let options = ContactOptions {
+            normal_penalty: penalty,
+            ..ContactOptions::default()
+        };
+        let m = model(&s, 3 * spp, &options);
+        let settle = strand_fine::SettleOptions::default();
+        let moving = strand_fine::settle::motion_model(&m, &settle);
+        let dt = strand_fine::settle_time_step(&moving, &m.rest_state(), settle.safety);
+        println!("{name}: stable step {dt:.4e} s");
     }
 }
