@@ -189,8 +189,10 @@ pub enum SettleError {
     },
 }
 
-/// Damping rate and ramp time of the settle for `model` (1/s, s).
-fn damping_and_ramp(model: &FineModel, options: &SettleOptions) -> (f64, f64) {
+/// Damping rate and ramp time of the settle for `model` under `options` (1/s, s): the
+/// options' own, or the defaults of [`SettleOptions::damping_rate`] and
+/// [`SettleOptions::ramp_time`].
+pub fn damping_and_ramp(model: &FineModel, options: &SettleOptions) -> (f64, f64) {
     let core = &model.wires[0].chain;
     let length = core
         .segments
