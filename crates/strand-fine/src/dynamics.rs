@@ -12,7 +12,10 @@
 use nalgebra::{Matrix3, SMatrix, Vector3};
 use rayon::prelude::*;
 
-use crate::model::{Energies, FineModel, ModelState, WireLoads};
+use crate::contact::ContactHistory;
+use crate::model::{Energies, FineModel, ModelState, Wire, WireLoads, WireState, update_frames};
+use crate::segment::Frame;
+use crate::sweep;
 
 /// `B = M^{-1/2}` block by block at `state`, one 6 x 6 block per segment: `m^{-1/2} I` on its
 /// translations (kg^-1/2) and `R I^{-1/2} R^T` on its rotations (kg^-1/2 m^-1; the world
@@ -99,6 +102,16 @@ pub fn stable_time_step(model: &FineModel, state: &ModelState, safety: f64) -> f
     safety * MOTION_FACTOR * 2.0 / highest_frequency(model, state)
 }
 
+/// One wire's share of a kick-drift sweep: the wire, its state, its committed contact
+/// histories, its loads and its segments' frames.
+type KickDrift<'a> = (
+    (
+        ((&'a Wire, &'a mut WireState), &'a mut Vec<ContactHistory>),
+        &'a WireLoads,
+    ),
+    &'a mut Vec<Frame>,
+);
+
 /// Kick-drift-kick integrator with its load buffers (allocation-free steps).
 #[derive(Debug, Clone)]
 pub struct Integrator {
@@ -115,6 +128,9 @@ pub struct Integrator {
     /// not book it); [`crate::settle()`] uses it to bring the strand to rest.
     pub damping_rate: f64,
     loads: Vec<WireLoads>,
+    /// Every segment's frame after the last drift of [`Integrator::advance`] (one list per
+    /// wire), for the loads of the step.
+    frames: Vec<Vec<Frame>>,
 }
 
 impl Integrator {
@@ -122,6 +138,7 @@ impl Integrator {
     pub fn new(model: &FineModel, state: &ModelState, dt: f64) -> Self {
         let mut loads = model.load_buffers();
         model.compute_loads(state, 1.0, &mut loads);
+        let frames = loads.iter().map(|l| l.frames.clone()).collect();
         Self {
             dt,
             time: 0.0,
@@ -129,6 +146,7 @@ impl Integrator {
             load_factor: 1.0,
             damping_rate: 0.0,
             loads,
+            frames,
         }
     }
 
@@ -143,54 +161,22 @@ impl Integrator {
         &self.loads
     }
 
-    /// Advances `state` by one step.
+    /// Advances `state` by one step at the current `load_factor`: [`Integrator::advance`] by
+    /// one step (the same arithmetic as a kick, drift, load evaluation, commit and kick).
     pub fn step(&mut self, model: &FineModel, state: &mut ModelState) {
-        let dt = self.dt;
-        let h = 0.5 * dt;
-        model
-            .wires
-            .par_iter()
-            .zip(state.wires.par_iter_mut())
-            .zip(self.loads.par_iter())
-            .for_each(|((w, s), l)| {
-                for (k, seg) in w.chain.segments.iter().enumerate() {
-                    // Kick.
-                    s.velocities[k] += l.forces[k] * (h / seg.mass);
-                    s.angular_momenta[k] += l.torques[k] * h;
-                    // Drift: exact free flight.
-                    let p = &mut s.poses[k];
-                    p.position += s.velocities[k] * dt;
-                    p.rotation = seg.free_rotation(&p.rotation, &s.angular_momenta[k], dt);
-                }
-            });
-        model.compute_loads(state, self.load_factor, &mut self.loads);
-        model.commit_contacts(state, &self.loads);
-        let damp = (-self.damping_rate * dt).exp();
-        model
-            .wires
-            .par_iter()
-            .zip(state.wires.par_iter_mut())
-            .zip(self.loads.par_iter())
-            .for_each(|((w, s), l)| {
-                for (k, seg) in w.chain.segments.iter().enumerate() {
-                    s.velocities[k] += l.forces[k] * (h / seg.mass);
-                    s.angular_momenta[k] += l.torques[k] * h;
-                    if damp < 1.0 {
-                        s.velocities[k] *= damp;
-                        s.angular_momenta[k] *= damp;
-                    }
-                }
-            });
-        self.time += dt;
-        self.steps += 1;
+        let load_factor = self.load_factor;
+        self.advance(model, state, 1, &move |_| load_factor);
     }
 
     /// Advances `state` by `steps` steps, the load factor of each step set by
     /// `load_factor(t)` at the step's end time `t` (s). The same results, bit for bit, as
-    /// `steps` calls of [`Integrator::step`] with those load factors, in two parallel
-    /// sweeps per step instead of three: the commit of a step's contact histories, its
-    /// second half kick (and damping) and the first half kick and drift of the next are one
-    /// sweep.
+    /// `steps` calls of [`Integrator::step`] with those load factors, in two sweeps over the
+    /// wires per step instead of four: the commit of a step's contact histories, its second
+    /// half kick (and damping), the first half kick and drift of the next and the segments'
+    /// frames at the new poses are one sweep, the loads the other. The sweeps run in
+    /// parallel when rayon's pool has more than one thread, else in the calling thread
+    /// (`sweep` module), and in parallel all `steps` run on one of the pool's threads; the
+    /// numbers are the same either way.
     pub fn advance(
         &mut self,
         model: &FineModel,
@@ -198,48 +184,83 @@ impl Integrator {
         steps: u64,
         load_factor: &(dyn Fn(f64) -> f64 + Sync),
     ) {
+        if sweep::parallel() {
+            // On one of the pool's threads: the sweeps' halves are handed to the other
+            // threads of the pool without waking the calling thread every time.
+            rayon::scope(|_| self.advance_on(model, state, steps, load_factor, true));
+        } else {
+            self.advance_on(model, state, steps, load_factor, false);
+        }
+    }
+
+    /// [`Integrator::advance`], its sweeps over the wires in parallel if `parallel`.
+    fn advance_on(
+        &mut self,
+        model: &FineModel,
+        state: &mut ModelState,
+        steps: u64,
+        load_factor: &(dyn Fn(f64) -> f64 + Sync),
+        parallel: bool,
+    ) {
         let dt = self.dt;
         let h = 0.5 * dt;
         let damp = (-self.damping_rate * dt).exp();
         for i in 0..=steps {
             // Commit (the previous step's), kick (the previous step's second half and this
-            // step's first), then drift; after the last step, commit and the second half.
+            // step's first), then drift and frames; after the last step, commit and the
+            // second half.
             let (first, last) = (i == 0, i == steps);
             let ModelState {
                 wires, contacts, ..
             } = &mut *state;
-            model
-                .wires
-                .par_iter()
-                .zip(wires.par_iter_mut())
-                .zip(contacts.par_iter_mut())
-                .zip(self.loads.par_iter())
-                .for_each(|(((w, s), hist), l)| {
-                    if !first {
-                        for (hi, c) in hist.iter_mut().zip(&l.contacts) {
-                            *hi = c.history;
-                        }
+            let kick_drift = |((((w, s), hist), l), frames): KickDrift<'_>| {
+                if !first {
+                    for (hi, c) in hist.iter_mut().zip(&l.contacts) {
+                        *hi = c.history;
                     }
-                    for (k, seg) in w.chain.segments.iter().enumerate() {
-                        let (dv, dl) = (l.forces[k] * (h / seg.mass), l.torques[k] * h);
-                        if !first {
-                            s.velocities[k] += dv;
-                            s.angular_momenta[k] += dl;
-                            if damp < 1.0 {
-                                s.velocities[k] *= damp;
-                                s.angular_momenta[k] *= damp;
-                            }
-                        }
-                        if last {
-                            continue;
-                        }
+                }
+                for (k, seg) in w.chain.segments.iter().enumerate() {
+                    let (dv, dl) = (l.forces[k] * (h / seg.mass), l.torques[k] * h);
+                    if !first {
                         s.velocities[k] += dv;
                         s.angular_momenta[k] += dl;
-                        let p = &mut s.poses[k];
-                        p.position += s.velocities[k] * dt;
-                        p.rotation = seg.free_rotation(&p.rotation, &s.angular_momenta[k], dt);
+                        if damp < 1.0 {
+                            s.velocities[k] *= damp;
+                            s.angular_momenta[k] *= damp;
+                        }
                     }
-                });
+                    if last {
+                        continue;
+                    }
+                    s.velocities[k] += dv;
+                    s.angular_momenta[k] += dl;
+                    let p = &mut s.poses[k];
+                    p.position += s.velocities[k] * dt;
+                    p.rotation = seg.free_rotation(&p.rotation, &s.angular_momenta[k], dt);
+                }
+                if !last {
+                    update_frames(&s.poses, frames);
+                }
+            };
+            if parallel {
+                model
+                    .wires
+                    .par_iter()
+                    .zip(wires.par_iter_mut())
+                    .zip(contacts.par_iter_mut())
+                    .zip(self.loads.par_iter())
+                    .zip(self.frames.par_iter_mut())
+                    .for_each(kick_drift);
+            } else {
+                model
+                    .wires
+                    .iter()
+                    .zip(wires.iter_mut())
+                    .zip(contacts.iter_mut())
+                    .zip(&self.loads)
+                    .zip(self.frames.iter_mut())
+                    .for_each(kick_drift);
+            }
             if !first {
                 // The friction loss, summed in wire order as `commit_contacts` does.
                 for l in &self.loads {
@@ -250,7 +271,7 @@ impl Integrator {
                 break;
             }
             self.load_factor = load_factor(self.time + dt);
-            model.compute_loads(state, self.load_factor, &mut self.loads);
+            model.loads_at_frames(state, self.load_factor, &self.frames, &mut self.loads);
             self.time += dt;
             self.steps += 1;
         }

@@ -48,6 +48,7 @@ pub mod so3;
 pub mod sparse_tangent;
 pub mod spectrum;
 pub mod statics;
+mod sweep;
 pub mod tangent;
 
 pub use bending::{BendingError, BendingPoint, BendingTest};
@@ -64,8 +65,8 @@ pub use model::{
 };
 pub use segment::{Pose, Segment};
 pub use settle::{
-    SettleError, SettleOptions, SettleReport, SettledOptions, SettledReport, settle,
-    settle_time_step, solve_settled,
+    SettleError, SettleOptions, SettleReport, SettledOptions, SettledReport, damping_and_ramp,
+    settle, settle_time_step, solve_settled,
 };
 pub use statics::{
     RelaxationOptions, StaticError, StaticOptions, StaticReport, solve_relaxation, solve_static,

@@ -26,6 +26,7 @@ use crate::interlayer::{self, LinkKind, WireLink};
 use crate::joint::{JointSpring, JointStiffness};
 use crate::penalty;
 use crate::segment::{Frame, Placement, Pose};
+use crate::sweep;
 
 /// Boundary condition at one end of the strand.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -652,92 +653,116 @@ impl FineModel {
     /// committed histories in `state` and their trial results kept in `loads` (see
     /// [`FineModel::commit_contacts`]). The result is the same for any number of threads.
     pub fn compute_loads(&self, state: &ModelState, load_factor: f64, loads: &mut [WireLoads]) {
-        let g = self.gravity * load_factor;
         // Every wire's frames first: contacts read their partners' (the core's, and the
         // wires' of the layer beneath and of the neighbours).
         let mut frames: Vec<Vec<Frame>> = loads
             .iter_mut()
             .map(|l| std::mem::take(&mut l.frames))
             .collect();
-        frames
-            .par_iter_mut()
-            .zip(state.wires.par_iter())
-            .for_each(|(f, s)| {
-                for (fi, p) in f.iter_mut().zip(&s.poses) {
-                    *fi = Frame::of(p);
-                }
-            });
-        let all_frames = &frames;
-        let core_segs = &self.wires[0].chain.segments;
-        self.wires
-            .par_iter()
-            .zip(state.wires.par_iter())
-            .zip(state.contacts.par_iter())
-            .zip(loads.par_iter_mut())
-            .enumerate()
-            .for_each(|(i, (((w, s), hist), l))| {
-                let frames = &all_frames[i];
-                l.forces.iter_mut().for_each(|f| *f = Vector3::zeros());
-                l.torques.iter_mut().for_each(|t| *t = Vector3::zeros());
-                let (spring, grav) = w.add_loads(
-                    &s.poses,
-                    frames,
-                    &g,
-                    load_factor,
-                    &mut l.forces,
-                    &mut l.torques,
-                );
-                l.spring_energy = spring;
-                l.gravity_energy = grav;
-                if i == 0 {
-                    return;
-                }
-                let (mut ce, mut fe, mut sw) = (0.0, 0.0, 0.0);
-                let nc = w.contacts.len();
-                let (to_core, to_wires) = l.contacts.split_at_mut(nc);
-                for ((cp, h), out) in w.contacts.iter().zip(hist).zip(to_core) {
-                    let c =
-                        contact::evaluate(cp, h, &frames[cp.segment], &all_frames[0], core_segs);
-                    l.forces[cp.segment] += c.force_wire;
-                    l.torques[cp.segment] += c.torque_wire;
-                    ce += c.normal_energy;
-                    fe += c.tangential_energy;
-                    sw += c.slip_work;
-                    *out = c;
-                }
-                for ((lk, h), out) in w.links.iter().zip(&hist[nc..]).zip(to_wires.iter_mut()) {
-                    let k = lk.segment;
-                    *out = interlayer::evaluate(
-                        lk,
-                        h,
-                        &frames[k],
-                        w.chain.segments[k].length,
-                        &all_frames[lk.partner],
-                        &self.wires[lk.partner].chain.segments,
-                    );
-                }
-                // One contact per crossing at the chords' nodes.
-                let dropped = interlayer::duplicates(&w.links, |i| {
-                    let c = &to_wires[i];
-                    (c.state != ContactState::Open).then_some(c.normal_force)
-                });
-                for ((lk, out), drop) in w.links.iter().zip(to_wires.iter_mut()).zip(dropped) {
-                    if drop {
-                        *out = ContactLoad::open_at(out.core_segment);
-                    }
-                    let (k, c) = (lk.segment, *out);
-                    l.forces[k] += c.force_wire;
-                    l.torques[k] += c.torque_wire;
-                    ce += c.normal_energy;
-                    fe += c.tangential_energy;
-                    sw += c.slip_work;
-                }
-                l.contact_energy = ce;
-                l.friction_energy = fe;
-                l.slip_work = sw;
-            });
+        let update = |(f, s): (&mut Vec<Frame>, &WireState)| update_frames(&s.poses, f);
+        if sweep::parallel() {
+            frames
+                .par_iter_mut()
+                .zip(state.wires.par_iter())
+                .for_each(update);
+        } else {
+            frames.iter_mut().zip(&state.wires).for_each(update);
+        }
+        self.loads_at_frames(state, load_factor, &frames, loads);
         for (l, f) in loads.iter_mut().zip(frames) {
             l.frames = f;
+        }
+    }
+
+    /// [`FineModel::compute_loads`] with every segment's frame at `state` given in `frames`
+    /// (one list per wire, [`update_frames`] of its poses): the time stepping updates them
+    /// in its own sweep over the wires, right after the drift.
+    pub(crate) fn loads_at_frames(
+        &self,
+        state: &ModelState,
+        load_factor: f64,
+        frames: &[Vec<Frame>],
+        loads: &mut [WireLoads],
+    ) {
+        let g = self.gravity * load_factor;
+        let all_frames = frames;
+        let core_segs = &self.wires[0].chain.segments;
+        let wire_loads = |(i, (((w, s), hist), l)): WireSweep<'_>| {
+            let frames = &all_frames[i];
+            l.forces.iter_mut().for_each(|f| *f = Vector3::zeros());
+            l.torques.iter_mut().for_each(|t| *t = Vector3::zeros());
+            let (spring, grav) = w.add_loads(
+                &s.poses,
+                frames,
+                &g,
+                load_factor,
+                &mut l.forces,
+                &mut l.torques,
+            );
+            l.spring_energy = spring;
+            l.gravity_energy = grav;
+            if i == 0 {
+                return;
+            }
+            let (mut ce, mut fe, mut sw) = (0.0, 0.0, 0.0);
+            let nc = w.contacts.len();
+            let (to_core, to_wires) = l.contacts.split_at_mut(nc);
+            for ((cp, h), out) in w.contacts.iter().zip(hist).zip(to_core) {
+                let c = contact::evaluate(cp, h, &frames[cp.segment], &all_frames[0], core_segs);
+                l.forces[cp.segment] += c.force_wire;
+                l.torques[cp.segment] += c.torque_wire;
+                ce += c.normal_energy;
+                fe += c.tangential_energy;
+                sw += c.slip_work;
+                *out = c;
+            }
+            for ((lk, h), out) in w.links.iter().zip(&hist[nc..]).zip(to_wires.iter_mut()) {
+                let k = lk.segment;
+                *out = interlayer::evaluate(
+                    lk,
+                    h,
+                    &frames[k],
+                    w.chain.segments[k].length,
+                    &all_frames[lk.partner],
+                    &self.wires[lk.partner].chain.segments,
+                );
+            }
+            // One contact per crossing at the chords' nodes.
+            let dropped = interlayer::duplicates(&w.links, |i| {
+                let c = &to_wires[i];
+                (c.state != ContactState::Open).then_some(c.normal_force)
+            });
+            for ((lk, out), drop) in w.links.iter().zip(to_wires.iter_mut()).zip(dropped) {
+                if drop {
+                    *out = ContactLoad::open_at(out.core_segment);
+                }
+                let (k, c) = (lk.segment, *out);
+                l.forces[k] += c.force_wire;
+                l.torques[k] += c.torque_wire;
+                ce += c.normal_energy;
+                fe += c.tangential_energy;
+                sw += c.slip_work;
+            }
+            l.contact_energy = ce;
+            l.friction_energy = fe;
+            l.slip_work = sw;
+        };
+        if sweep::parallel() {
+            self.wires
+                .par_iter()
+                .zip(state.wires.par_iter())
+                .zip(state.contacts.par_iter())
+                .zip(loads.par_iter_mut())
+                .enumerate()
+                .for_each(wire_loads);
+        } else {
+            self.wires
+                .iter()
+                .zip(&state.wires)
+                .zip(&state.contacts)
+                .zip(loads.iter_mut())
+                .enumerate()
+                .for_each(wire_loads);
         }
         let core_poses = &state.wires[0].poses;
         // The core's share, in a fixed order.
@@ -895,6 +920,23 @@ pub struct ModelState {
     pub contacts: Vec<Vec<ContactHistory>>,
     /// Work lost to friction on committed steps (J).
     pub friction_work: f64,
+}
+
+/// One wire's share of the loads' sweep: its index, the wire, its state, its committed
+/// contact histories and its loads.
+type WireSweep<'a> = (
+    usize,
+    (
+        ((&'a Wire, &'a WireState), &'a Vec<ContactHistory>),
+        &'a mut WireLoads,
+    ),
+);
+
+/// Sets `frames` to the frames of `poses` ([`Frame::of`]), one for one.
+pub(crate) fn update_frames(poses: &[Pose], frames: &mut [Frame]) {
+    for (f, p) in frames.iter_mut().zip(poses) {
+        *f = Frame::of(p);
+    }
 }
 
 /// Loads on one wire's segments and its energies.

@@ -25,7 +25,11 @@
 //!
 //! Mass-proportional damping at rate gamma makes every mode above gamma / 2 decay as
 //! exp(-gamma t / 2) and modes below it as exp(-omega^2 t / gamma): gamma near twice the
-//! lowest frequency settles fastest. Friction makes the static state depend on the load
+//! lowest frequency settles fastest. The residual the settle waits on is that of the stiff
+//! modes, all above gamma / 2: on the Fig. 7 strand under g = 8 it is 1.57e4 times its
+//! allowance at the end of the ramp and the settle ends 2.17 s later, when exp(-gamma t / 2)
+//! has taken 1.65e4 off it; fewer steps need another damping, i.e. another load path.
+//! Friction makes the static state depend on the load
 //! path, and strongly on the damping: on the Table 1 strand under g = 8 (20 segments per
 //! wire) states settled with gamma 5 % apart differ by 1.7e-4 m at the tip, while a ramp 5 %
 //! longer moves it by 1e-6 m, a time step 0.67 or 2.2 times as long by less than 2e-6 m and
@@ -189,8 +193,10 @@ pub enum SettleError {
     },
 }
 
-/// Damping rate and ramp time of the settle for `model` (1/s, s).
-fn damping_and_ramp(model: &FineModel, options: &SettleOptions) -> (f64, f64) {
+/// Damping rate and ramp time of the settle for `model` under `options` (1/s, s): the
+/// options' own, or the defaults of [`SettleOptions::damping_rate`] and
+/// [`SettleOptions::ramp_time`].
+pub fn damping_and_ramp(model: &FineModel, options: &SettleOptions) -> (f64, f64) {
     let core = &model.wires[0].chain;
     let length = core
         .segments

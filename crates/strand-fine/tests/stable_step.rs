@@ -182,3 +182,57 @@ fn advance_matches_single_steps_bit_for_bit() {
     assert!(a.wires[1].poses[5].position != state0.wires[1].poses[5].position);
     assert_eq!(a, b);
 }
+
+/// `Integrator::advance` gives the same numbers, bit for bit, on one thread (its sweeps in
+/// the calling thread) and on three (the steps on one of the pool's threads, the sweeps over
+/// the wires split between the pool's threads), damped, with contacts and a ramped load;
+/// and the same as `Integrator::step`, whose sweeps always go through rayon.
+#[test]
+fn advance_does_not_depend_on_the_thread_count() {
+    let mut m = model(12);
+    m.gravity = Vector3::new(0.0, -8.0, 0.0);
+    let state0 = m.rest_state();
+    let dt = stable_time_step(&m, &state0, 0.9);
+    let ramp = |t: f64| (t / (300.0 * dt)).min(1.0);
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut s = state0.clone();
+            let mut int = Integrator::new(&m, &s, dt);
+            int.damping_rate = 30.0;
+            int.load_factor = 0.0;
+            int.reload(&m, &s);
+            for _ in 0..4 {
+                int.advance(&m, &mut s, 100, &ramp);
+            }
+            (s, int.loads().to_vec())
+        })
+    };
+    let (one, loads_one) = run(1);
+    let (three, loads_three) = run(3);
+    assert!(one.wires[1].poses[5].position != state0.wires[1].poses[5].position);
+    let closed = loads_one
+        .iter()
+        .flat_map(|l| &l.contacts)
+        .filter(|c| c.state != strand_fine::ContactState::Open)
+        .count();
+    assert!(closed > 10, "{closed} contacts closed");
+    assert!(one == three, "the states on 1 and 3 threads differ");
+    assert!(
+        loads_one == loads_three,
+        "the loads on 1 and 3 threads differ"
+    );
+    let mut b = state0.clone();
+    let mut ib = Integrator::new(&m, &b, dt);
+    ib.damping_rate = 30.0;
+    ib.load_factor = 0.0;
+    ib.reload(&m, &b);
+    for _ in 0..400 {
+        ib.load_factor = ramp(ib.time + dt);
+        ib.step(&m, &mut b);
+    }
+    assert!(one == b, "advance and step differ");
+}
