@@ -253,8 +253,9 @@ pub fn energy_balance(
             } else {
                 frames.max(every_step)
             };
-            let limit = match (model, tol.fine) {
-                ("fine", Some(f)) => f,
+            let limit = match (model, tol.fine, tol.traditional) {
+                ("fine", Some(f), _) => f,
+                ("traditional", _, Some(t)) => t,
                 _ => tol.relative,
             };
             let row = Row::measured(scene, CHECK, model, rel, "", Bound::AtMost(limit)).with_note(

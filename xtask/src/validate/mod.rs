@@ -148,7 +148,14 @@ pub fn run(args: &ValidateArgs) -> anyhow::Result<Report> {
                 .checks
                 .iter()
                 .find_map(|c| match c {
-                    CheckSpec::EnergyBalance(t) => Some(t.relative + t.fine.unwrap_or(t.relative)),
+                    CheckSpec::EnergyBalance(t) => Some(compare::TotalLimit {
+                        limit: t.relative + t.fine.unwrap_or(t.relative),
+                        open: t
+                            .open
+                            .as_ref()
+                            .filter(|o| o.models.iter().any(|m| m == "equivalent" || m == "fine"))
+                            .map(|o| o.why.clone()),
+                    }),
                     _ => None,
                 }),
         };
@@ -255,8 +262,9 @@ struct SceneRun<'a> {
     /// `[i/N]`: which scene of the plan this is.
     tag: String,
     /// The limit of a total-energy difference against the fine model: the equivalent's
-    /// plus the fine model's energy-balance limit (relative to the largest kinetic energy).
-    balance: Option<f64>,
+    /// plus the fine model's energy-balance limit (relative to the largest kinetic energy),
+    /// open when either is.
+    balance: Option<compare::TotalLimit>,
 }
 
 impl SceneRun<'_> {
@@ -463,7 +471,7 @@ impl SceneRun<'_> {
                             &self.out.join("fine"),
                             dynamic,
                             t,
-                            self.balance,
+                            self.balance.as_ref(),
                         )),
                         Err(e) => rows.push(Row::failed(
                             &name,

@@ -137,6 +137,10 @@ pub struct EnergyTol {
     /// stable step); default `relative`.
     #[serde(default)]
     pub fine: Option<f64>,
+    /// Largest relative balance error of the traditional beam (its constant law has no
+    /// slip to book, so its bound is the step's error alone); default `relative`.
+    #[serde(default)]
+    pub traditional: Option<f64>,
     /// Models whose balance is an open claim (it holds at the scene's step and mesh but not
     /// under refinement): their rows are reported as open, neither pass nor fail.
     #[serde(default)]
