@@ -14,6 +14,13 @@ pub(super) struct PlanarWires {
     /// `scale * gain_min > 0` every wire has both friction limits, and the kernels skip the
     /// test for a wire without any ([`planar_continuous`]).
     pub gain_min: f64,
+    /// sum_i l_i^2 (m^2): the layer's stick stiffness per unit spring `k`.
+    pub lever_square: f64,
+    /// The largest gain of either side per `k |l_i|` over the wires (1/(N m)); infinite where
+    /// a wire has no lever (module `layer_state`).
+    pub ratio_max: f64,
+    /// 1 / |l_i| (1/m; infinite for a wire without lever).
+    pub inv_lever: Vec<f64>,
 }
 
 /// [`planar_continuous`] with the per-wire test for a wire without friction limits only where
