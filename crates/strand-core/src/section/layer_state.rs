@@ -2,7 +2,8 @@
 //! strand of several layers).
 //!
 //! At the accepted iterate of a step the planar law writes, after each layer's slips, what
-//! the next step's Newton iterations need to evaluate the layer without visiting its wires:
+//! the next step's Newton iterations need to evaluate the layer without visiting its wires
+//! (summed by the wire loop of the books, `kernels::LayerTally`):
 //! the curvature `kappa_r` (1/m) and friction-limit scale `c_r` (N) it was committed at, and
 //!
 //! * for a layer whose wires all stuck (no slip changed): the smallest distance `D` (1/m) of
@@ -23,7 +24,7 @@
 //! rounding of the sums. The books (energy, slip work, trial slips) of the accepted iterate
 //! always come from the wire loop.
 
-use super::kernels::PlanarWires;
+use super::kernels::{LayerTally, PlanarWires};
 use super::layer_law::LayerLaw;
 
 /// Values per layer: kind, `kappa_r`, `c_r`, then `D` and `P` (stick) or `sigma` and `C`
@@ -35,62 +36,31 @@ const STICK: f64 = 1.0;
 const SLIP: f64 = 2.0;
 
 /// Writes the layer's closed-form state into `out` ([`LAYER_STATE`] values) at the accepted
-/// curvature `kappa` and scale `scale`, from the committed slips `slip` and the trial slips
-/// `trial` the wire loop has just written.
+/// curvature `kappa` and scale `scale`, from what the wire loop summed into `tally` while it
+/// wrote the trial slips.
 pub(super) fn commit(
     law: &LayerLaw,
     p: &PlanarWires,
     kappa: f64,
     scale: f64,
-    slip: &[f64],
-    trial: &[f64],
+    tally: &LayerTally,
     out: &mut [f64],
 ) {
-    out.fill(0.0);
-    out[0] = NONE;
-    if !(scale * p.gain_min > 0.0 && p.ratio_max.is_finite()) {
+    out.fill(NONE);
+    let limited = scale * p.gain_min > 0.0 && p.ratio_max.is_finite();
+    let n = p.lever.len();
+    if !limited || n == 0 {
         return;
     }
-    let n = p.lever.len();
-    let (lev, gp, gn, inv) = (
-        &p.lever[..n],
-        &p.gain_pos[..n],
-        &p.gain_neg[..n],
-        &p.inv_lever[..n],
-    );
-    let (slip, trial) = (&slip[..n], &trial[..n]);
     let k = law.k;
-    let mut moved = 0;
-    for i in 0..n {
-        moved += usize::from(trial[i] != slip[i]);
-    }
-    if moved == 0 {
-        let (mut d, mut residual) = (f64::INFINITY, 0.0);
-        for i in 0..n {
-            let l = lev[i];
-            let elastic = k * (l * kappa - trial[i]);
-            let (a, b) = (scale * gp[i] - elastic, elastic + scale * gn[i]);
-            let margin = (if a < b { a } else { b }) * inv[i];
-            d = if margin < d { margin } else { d };
-            residual += trial[i] * l;
-        }
-        let d = d / k;
+    if tally.moved == 0 {
+        let d = tally.margin / k;
         if d > 0.0 {
-            out.copy_from_slice(&[STICK, kappa, scale, d, k * residual]);
+            out.copy_from_slice(&[STICK, kappa, scale, d, k * tally.residual]);
         }
-    } else if moved == n {
-        // sigma_i sign(l_i) is the same for every wire: the first wire's.
-        let up = (trial[0] > slip[0]) == (lev[0] > 0.0);
-        let mut c = 0.0;
-        for i in 0..n {
-            let pos = trial[i] > slip[i];
-            if pos != (up == (lev[i] > 0.0)) || lev[i] == 0.0 {
-                return;
-            }
-            c += if pos { gp[i] * lev[i] } else { -gn[i] * lev[i] };
-        }
-        let sigma = if up { 1.0 } else { -1.0 };
-        out.copy_from_slice(&[SLIP, kappa, scale, sigma, c]);
+    } else if tally.moved == n && (tally.along == n || tally.along == 0) {
+        let sigma = if tally.along == n { 1.0 } else { -1.0 };
+        out.copy_from_slice(&[SLIP, kappa, scale, sigma, tally.per_scale]);
     }
 }
 

@@ -76,7 +76,7 @@ mod slider;
 mod slip_limit;
 
 use direction::{BendingDirection, DIRECTION_STATE};
-use kernels::{PlanarWires, continuous_wires, hysteretic_wires};
+use kernels::{LayerTally, PlanarWires, continuous_wires, hysteretic_wires};
 use layer_law::{LayerLaw, still_per_scale};
 use layer_state::LAYER_STATE;
 pub use options::SectionOptions;
@@ -534,28 +534,35 @@ impl SectionLaw {
                 }
             }
             (LawKind::Hysteretic, layers, planar) if stateful => {
-                // Each layer's wires, one after another in the state.
-                let (mut sl, mut tr) = (&slip[..n], &mut trial[..n]);
+                // Each layer's wires, one after another in the state; then, where the state
+                // holds them, each layer's closed-form state for the next step's iterations.
+                let (wires, tail) = trial.split_at_mut(n);
+                let tally = self.layer_states && slip.len() == self.state_len();
+                let mut states = if tally {
+                    tail[DIRECTION_STATE..].chunks_exact_mut(LAYER_STATE)
+                } else {
+                    [].chunks_exact_mut(LAYER_STATE)
+                };
+                let (mut sl, mut tr) = (&slip[..n], wires);
                 for (law, p) in layers.iter().zip(planar) {
                     let (scale, dscale) = law.cap_scale(eps);
                     let m = p.lever.len();
                     let (s_here, s_rest) = sl.split_at(m);
                     let (t_here, t_rest) = tr.split_at_mut(m);
-                    hysteretic_wires::<true>(law, p, kappa, scale, dscale, s_here, t_here, &mut r);
-                    (sl, tr) = (s_rest, t_rest);
-                }
-                if self.layer_states && slip.len() == self.state_len() {
-                    // Each layer's closed-form state for the next step's iterations.
-                    let (wires, tail) = trial.split_at_mut(n);
-                    let states = tail[DIRECTION_STATE..].chunks_exact_mut(LAYER_STATE);
-                    let mut first = 0;
-                    for ((law, p), out) in layers.iter().zip(planar).zip(states) {
-                        let m = p.lever.len();
-                        let (s, t) = (&slip[first..first + m], &wires[first..first + m]);
-                        let scale = law.cap_scale(eps).0;
-                        layer_state::commit(law, p, kappa, scale, s, t, out);
-                        first += m;
+                    let mut t = LayerTally::default();
+                    if tally {
+                        hysteretic_wires::<true, true>(
+                            law, p, kappa, scale, dscale, s_here, t_here, &mut r, &mut t,
+                        );
+                        if let Some(out) = states.next() {
+                            layer_state::commit(law, p, kappa, scale, &t, out);
+                        }
+                    } else {
+                        hysteretic_wires::<true, false>(
+                            law, p, kappa, scale, dscale, s_here, t_here, &mut r, &mut t,
+                        );
                     }
+                    (sl, tr) = (s_rest, t_rest);
                 }
             }
             _ => {
@@ -615,7 +622,18 @@ impl SectionLaw {
             (LawKind::Hysteretic, [law], [p]) if slip.len() > n => {
                 let (scale, dscale) = law.cap_scale(eps);
                 let sl = &slip[..n];
-                hysteretic_wires::<false>(law, p, kappa, scale, dscale, sl, &mut [], &mut r);
+                let t = &mut LayerTally::default();
+                hysteretic_wires::<false, false>(
+                    law,
+                    p,
+                    kappa,
+                    scale,
+                    dscale,
+                    sl,
+                    &mut [],
+                    &mut r,
+                    t,
+                );
             }
             (LawKind::Continuous, layers, planar) => {
                 for (law, p) in layers.iter().zip(planar) {
@@ -644,7 +662,18 @@ impl SectionLaw {
                         r.moment_curvature += tangent;
                         continue;
                     }
-                    hysteretic_wires::<false>(law, p, kappa, scale, dscale, here, &mut [], &mut r);
+                    let t = &mut LayerTally::default();
+                    hysteretic_wires::<false, false>(
+                        law,
+                        p,
+                        kappa,
+                        scale,
+                        dscale,
+                        here,
+                        &mut [],
+                        &mut r,
+                        t,
+                    );
                 }
             }
             _ => {
