@@ -14,6 +14,42 @@ pub(super) struct PlanarWires {
     /// `scale * gain_min > 0` every wire has both friction limits, and the kernels skip the
     /// test for a wire without any ([`planar_continuous`]).
     pub gain_min: f64,
+    /// sum_i l_i^2 (m^2): the layer's stick stiffness per unit spring `k`.
+    pub lever_square: f64,
+    /// The largest gain of either side per `k |l_i|` over the wires (1/(N m)); infinite where
+    /// a wire has no lever (module `layer_state`).
+    pub ratio_max: f64,
+    /// 1 / |l_i| (1/m; infinite for a wire without lever).
+    pub inv_lever: Vec<f64>,
+}
+
+/// What the wire loop of an accepted iterate tells of a layer's closed form (module
+/// `layer_state`), summed alongside the books.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct LayerTally {
+    /// Wires that slipped.
+    pub moved: usize,
+    /// Slipping wires whose side sigma_i has the sign of their lever l_i.
+    pub along: usize,
+    /// The smallest distance of a sticking wire's elastic force from its friction limits per
+    /// |l_i| (N/m).
+    pub margin: f64,
+    /// sum_i s_i l_i over the sticking wires (m).
+    pub residual: f64,
+    /// sum_i sigma_i g_i l_i over the slipping wires (m).
+    pub per_scale: f64,
+}
+
+impl Default for LayerTally {
+    fn default() -> Self {
+        LayerTally {
+            moved: 0,
+            along: 0,
+            margin: f64::INFINITY,
+            residual: 0.0,
+            per_scale: 0.0,
+        }
+    }
 }
 
 /// [`planar_continuous`] with the per-wire test for a wire without friction limits only where
@@ -35,10 +71,11 @@ pub(super) fn continuous_wires<const BOOKS: bool>(
     }
 }
 
-/// [`planar_hysteretic`] with the free-wire test chosen as in [`continuous_wires`].
+/// [`planar_hysteretic`] with the free-wire test chosen as in [`continuous_wires`]; `TALLY`
+/// (with `BOOKS`): sum the layer's closed-form data into `tally`.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub(super) fn hysteretic_wires<const BOOKS: bool>(
+pub(super) fn hysteretic_wires<const BOOKS: bool, const TALLY: bool>(
     law: &LayerLaw,
     p: &PlanarWires,
     kappa: f64,
@@ -47,12 +84,17 @@ pub(super) fn hysteretic_wires<const BOOKS: bool>(
     slip: &[f64],
     trial: &mut [f64],
     r: &mut PlanarResponse,
+    tally: &mut LayerTally,
 ) {
     let (k, ik) = (law.k, law.inv_k);
     if scale * p.gain_min > 0.0 {
-        planar_hysteretic::<false, BOOKS>(k, ik, p, kappa, scale, dscale, slip, trial, r);
+        planar_hysteretic::<false, BOOKS, TALLY>(
+            k, ik, p, kappa, scale, dscale, slip, trial, r, tally,
+        );
     } else {
-        planar_hysteretic::<true, BOOKS>(k, ik, p, kappa, scale, dscale, slip, trial, r);
+        planar_hysteretic::<true, BOOKS, TALLY>(
+            k, ik, p, kappa, scale, dscale, slip, trial, r, tally,
+        );
     }
 }
 
@@ -116,7 +158,7 @@ fn planar_continuous<const FREE: bool, const BOOKS: bool>(
 /// [`planar_continuous`]; without the books `trial` is not written (it may be empty).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn planar_hysteretic<const FREE: bool, const BOOKS: bool>(
+fn planar_hysteretic<const FREE: bool, const BOOKS: bool, const TALLY: bool>(
     k: f64,
     inv_k: f64,
     w: &PlanarWires,
@@ -126,6 +168,7 @@ fn planar_hysteretic<const FREE: bool, const BOOKS: bool>(
     slip: &[f64],
     trial: &mut [f64],
     r: &mut PlanarResponse,
+    tally: &mut LayerTally,
 ) {
     let n = w.lever.len();
     let (lev, gp, gn) = (&w.lever[..n], &w.gain_pos[..n], &w.gain_neg[..n]);
@@ -147,6 +190,16 @@ fn planar_hysteretic<const FREE: bool, const BOOKS: bool>(
                 trial[i] = committed;
                 r.energy += 0.5 * elastic * elastic * inv_k;
             }
+            if TALLY {
+                let (a, b) = (cap_pos - elastic, elastic + cap_neg);
+                let margin = (if a < b { a } else { b }) * w.inv_lever[i];
+                tally.margin = if margin < tally.margin {
+                    margin
+                } else {
+                    tally.margin
+                };
+                tally.residual += committed * lever;
+            }
             continue;
         }
         // Return mapping: the slip puts the wire on its friction limit. The stored energy is
@@ -165,6 +218,11 @@ fn planar_hysteretic<const FREE: bool, const BOOKS: bool>(
             r.energy += 0.5 * cap * cap * inv_k;
             r.slip_work += cap * (s - committed).abs();
             r.slipping += 1;
+        }
+        if TALLY {
+            tally.moved += 1;
+            tally.along += usize::from(pos == (lever > 0.0));
+            tally.per_scale += gain * lever;
         }
     }
 }

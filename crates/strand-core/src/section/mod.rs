@@ -67,6 +67,7 @@
 mod direction;
 mod kernels;
 mod layer_law;
+mod layer_state;
 mod options;
 pub mod pressure;
 mod report;
@@ -75,8 +76,9 @@ mod slider;
 mod slip_limit;
 
 use direction::{BendingDirection, DIRECTION_STATE};
-use kernels::{PlanarWires, continuous_wires, hysteretic_wires};
+use kernels::{LayerTally, PlanarWires, continuous_wires, hysteretic_wires};
 use layer_law::{LayerLaw, still_per_scale};
+use layer_state::LAYER_STATE;
 pub use options::SectionOptions;
 pub use pressure::{PressureSystem, SlipPressure};
 pub use response::{PlanarMoment, PlanarResponse, SectionResponse, WireReport};
@@ -139,6 +141,10 @@ pub struct SectionLaw {
     /// The layers' wires in all, kept for [`Self::state_len`], which element loops call per
     /// point.
     sliders: usize,
+    /// Whether the state holds each layer's closed-form state after the wires' slips and the
+    /// bending direction (module `layer_state`): the `hysteretic` law of a strand of several
+    /// layers. A 1+m strand keeps the wire loop, and its results bit for bit.
+    layer_states: bool,
     strand: Strand,
     options: SectionOptions,
 }
@@ -253,6 +259,7 @@ impl SectionLaw {
             axial_stiffness,
             base_bending,
             sliders: layers.iter().map(|l: &LayerLaw| l.wires).sum(),
+            layer_states: kind == LawKind::Hysteretic && layers.len() > 1,
             layers,
             pressure,
             strand: strand.clone(),
@@ -283,6 +290,7 @@ impl SectionLaw {
             layers: Vec::new(),
             pressure: None,
             sliders: 0,
+            layer_states: false,
             strand: strand.clone(),
             options: SectionOptions::default(),
         }
@@ -392,12 +400,24 @@ impl SectionLaw {
     }
     /// Length of the state slice a station needs: for the hysteretic law the slip strain of
     /// each wire, then the stored bending direction of the friction limits (the unit vector
-    /// (y, z) of the neutral axis's reference half, (0, 0) before any; module docs); 0 for the
-    /// other laws and for a strand without wires. Zeros are the straight, unslipped state.
+    /// (y, z) of the neutral axis's reference half, (0, 0) before any; module docs), then for
+    /// a strand of several layers each layer's closed-form state (module `layer_state`,
+    /// written by [`Self::planar`] at the accepted iterate; zeros: none); 0 for the other laws
+    /// and for a strand without wires. Zeros are the straight, unslipped state.
     #[inline]
     pub fn state_len(&self) -> usize {
         if self.kind.has_state() && self.sliders() > 0 {
-            self.sliders() + DIRECTION_STATE
+            self.sliders() + DIRECTION_STATE + self.layer_state_len()
+        } else {
+            0
+        }
+    }
+    /// The layers' closed-form state values at the end of a station's state (0 for a 1+m
+    /// strand and the laws without state).
+    #[inline]
+    fn layer_state_len(&self) -> usize {
+        if self.layer_states {
+            LAYER_STATE * self.layers.len()
         } else {
             0
         }
@@ -422,7 +442,20 @@ impl SectionLaw {
                     }
                 })
                 .collect();
+            let k = law.k;
             planar.push(PlanarWires {
+                lever_square: layer.iter().map(|w| w.lever[1] * w.lever[1]).sum(),
+                ratio_max: layer
+                    .iter()
+                    .map(|w| {
+                        if w.lever[1] == 0.0 {
+                            f64::INFINITY
+                        } else {
+                            w.gains[0].max(w.gains[1]) / (k * w.lever[1].abs())
+                        }
+                    })
+                    .fold(0.0, f64::max),
+                inv_lever: layer.iter().map(|w| 1.0 / w.lever[1].abs()).collect(),
                 lever: layer.iter().map(|w| w.lever[1]).collect(),
                 gain_pos: layer.iter().map(|w| w.gains[0]).collect(),
                 gain_neg: layer.iter().map(|w| w.gains[1]).collect(),
@@ -501,14 +534,34 @@ impl SectionLaw {
                 }
             }
             (LawKind::Hysteretic, layers, planar) if stateful => {
-                // Each layer's wires, one after another in the state.
-                let (mut sl, mut tr) = (&slip[..n], &mut trial[..n]);
+                // Each layer's wires, one after another in the state; then, where the state
+                // holds them, each layer's closed-form state for the next step's iterations.
+                let (wires, tail) = trial.split_at_mut(n);
+                let tally = self.layer_states && slip.len() == self.state_len();
+                let mut states = if tally {
+                    tail[DIRECTION_STATE..].chunks_exact_mut(LAYER_STATE)
+                } else {
+                    [].chunks_exact_mut(LAYER_STATE)
+                };
+                let (mut sl, mut tr) = (&slip[..n], wires);
                 for (law, p) in layers.iter().zip(planar) {
                     let (scale, dscale) = law.cap_scale(eps);
                     let m = p.lever.len();
                     let (s_here, s_rest) = sl.split_at(m);
                     let (t_here, t_rest) = tr.split_at_mut(m);
-                    hysteretic_wires::<true>(law, p, kappa, scale, dscale, s_here, t_here, &mut r);
+                    let mut t = LayerTally::default();
+                    if tally {
+                        hysteretic_wires::<true, true>(
+                            law, p, kappa, scale, dscale, s_here, t_here, &mut r, &mut t,
+                        );
+                        if let Some(out) = states.next() {
+                            layer_state::commit(law, p, kappa, scale, &t, out);
+                        }
+                    } else {
+                        hysteretic_wires::<true, false>(
+                            law, p, kappa, scale, dscale, s_here, t_here, &mut r, &mut t,
+                        );
+                    }
                     (sl, tr) = (s_rest, t_rest);
                 }
             }
@@ -524,13 +577,13 @@ impl SectionLaw {
         // The stored bending direction (hysteretic law), as `vector` writes it with kappa_y = 0
         // (`BendingDirection::select` without its angles): beyond the still curvature the
         // neutral axis of (0, kappa), (+-0, 1), else the stored one.
-        if slip.len() == n + DIRECTION_STATE && trial.len() == slip.len() {
+        if slip.len() == self.state_len() && slip.len() > n && trial.len() == slip.len() {
             let tail = if kappa.abs() > self.still(eps) {
                 [if kappa < 0.0 { -0.0 } else { 0.0 }, 1.0]
             } else {
                 [slip[n], slip[n + 1]]
             };
-            trial[n..].copy_from_slice(&tail);
+            trial[n..n + DIRECTION_STATE].copy_from_slice(&tail);
         }
         r
     }
@@ -539,7 +592,10 @@ impl SectionLaw {
     /// bit: what a Newton iteration reads. The books (stored energy, slip work, slipping
     /// wires, `dM/deps`) and the trial state are left out; [`Self::planar`] at the accepted
     /// strain and curvature gives them. For the `continuous` and `hysteretic` laws this skips
-    /// about half the work per wire.
+    /// about half the work per wire. The `hysteretic` law of a strand of several layers
+    /// evaluates a layer whose wires all stick, or all slip, in closed form from the state
+    /// the accepted iterate left (module `layer_state`): the wire loop's values up to the
+    /// rounding of the sums.
     #[inline(always)]
     pub fn planar_moment(&self, st: &Station, eps: f64, kappa: f64, slip: &[f64]) -> PlanarMoment {
         let base = self.planar_linear(eps, kappa);
@@ -566,7 +622,18 @@ impl SectionLaw {
             (LawKind::Hysteretic, [law], [p]) if slip.len() > n => {
                 let (scale, dscale) = law.cap_scale(eps);
                 let sl = &slip[..n];
-                hysteretic_wires::<false>(law, p, kappa, scale, dscale, sl, &mut [], &mut r);
+                let t = &mut LayerTally::default();
+                hysteretic_wires::<false, false>(
+                    law,
+                    p,
+                    kappa,
+                    scale,
+                    dscale,
+                    sl,
+                    &mut [],
+                    &mut r,
+                    t,
+                );
             }
             (LawKind::Continuous, layers, planar) => {
                 for (law, p) in layers.iter().zip(planar) {
@@ -576,11 +643,37 @@ impl SectionLaw {
             }
             (LawKind::Hysteretic, layers, planar) if slip.len() > n => {
                 let mut sl = &slip[..n];
+                // Each layer's closed-form state, where the state holds them.
+                let states = if self.layer_states && slip.len() == self.state_len() {
+                    &slip[n + DIRECTION_STATE..]
+                } else {
+                    &[]
+                };
+                let mut states = states.chunks_exact(LAYER_STATE);
                 for (law, p) in layers.iter().zip(planar) {
                     let (scale, dscale) = law.cap_scale(eps);
                     let (here, rest) = sl.split_at(p.lever.len());
-                    hysteretic_wires::<false>(law, p, kappa, scale, dscale, here, &mut [], &mut r);
                     sl = rest;
+                    let closed = states
+                        .next()
+                        .and_then(|s| layer_state::closed_form(law, p, kappa, scale, s));
+                    if let Some((moment, tangent)) = closed {
+                        r.moment += moment;
+                        r.moment_curvature += tangent;
+                        continue;
+                    }
+                    let t = &mut LayerTally::default();
+                    hysteretic_wires::<false, false>(
+                        law,
+                        p,
+                        kappa,
+                        scale,
+                        dscale,
+                        here,
+                        &mut [],
+                        &mut r,
+                        t,
+                    );
                 }
             }
             _ => {
@@ -663,7 +756,9 @@ impl SectionLaw {
         }
         let n = st.wires.len();
         let still = self.still(eps);
-        let dir = if slip.len() == n + DIRECTION_STATE && trial.len() == slip.len() {
+        let dir = if slip.len() == self.state_len() && slip.len() > n && trial.len() == slip.len() {
+            // No closed-form layer states in 3D: the next planar evaluation visits the wires.
+            trial[n + DIRECTION_STATE..].fill(0.0);
             BendingDirection::select(kappa, still, &slip[n..], Some(&mut trial[n..]))
         } else {
             BendingDirection::of(kappa)

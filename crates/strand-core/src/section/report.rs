@@ -76,7 +76,10 @@ impl SectionLaw {
         let knorm = kappa[0].hypot(kappa[1]);
         let n = st.wires.len();
         let still = self.still(eps);
-        let tail = slip.get(n..).filter(|t| t.len() == DIRECTION_STATE);
+        let tail = slip
+            .get(n..)
+            .filter(|t| t.len() + n == self.state_len())
+            .map(|t| &t[..DIRECTION_STATE]);
         let dir = match tail {
             Some(t) => BendingDirection::select(kappa, still, t, None),
             None => BendingDirection::of(kappa),
