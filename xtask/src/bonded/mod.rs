@@ -48,8 +48,8 @@ pub struct BondedArgs {
     /// Folder of the report [default: target/bonded].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-    /// Also write the table into its page of the manual (docs/book/src/validation.md, between the
-    /// `bonded` markers); only for a full run.
+    /// Also write the curves' tables into their page of the manual (docs/book/src/validation.md,
+    /// between the `bonded` markers); with the full study or `--variant curve`.
     #[arg(long)]
     pub update_docs: bool,
 }
@@ -419,9 +419,9 @@ fn study(sname: &str, strand: &Strand, load: &Loading, v: &Variant) -> anyhow::R
 
 /// Runs the study and writes the report; the caller decides the exit status.
 pub fn run(args: &BondedArgs) -> anyhow::Result<Report> {
-    if args.update_docs && (args.quick || args.variant.is_some()) {
+    if args.update_docs && (args.quick || args.variant.as_ref().is_some_and(|v| v != "curve")) {
         anyhow::bail!(
-            "--update-docs writes the manual's table from a full run: drop --quick and --variant"
+            "--update-docs writes the manual's curve tables: run the full study or --variant curve"
         );
     }
     let t0 = Instant::now();
@@ -509,7 +509,24 @@ pub fn run(args: &BondedArgs) -> anyhow::Result<Report> {
         serde_json::to_string_pretty(&curves)? + "\n",
     )?;
     print!("{detail}");
+    if args.update_docs {
+        crate::book::pages::update(
+            crate::book::pages::Page::Validation,
+            "bonded",
+            &curve_docs(&report, &curves),
+        )?;
+    }
     Ok(report)
+}
+
+/// The manual's `bonded` block: the report's provenance, its judged rows and the curves' tables.
+fn curve_docs(report: &Report, curves: &[curve::Curve]) -> String {
+    let mut s = report.docs();
+    for c in curves {
+        s += "\n";
+        s += &curve::details(c);
+    }
+    s
 }
 
 /// The criteria's rows.
