@@ -49,7 +49,7 @@ pub mod spectrum;
 pub mod statics;
 pub mod tangent;
 
-pub use bending::{BendingError, BendingPoint, BendingTest};
+pub use bending::{BendingError, BendingPoint, BendingTest, Pressure};
 pub use chain::{Chain, WireSection};
 pub use contact::{
     ContactHistory, ContactLaw, ContactLoad, ContactOptions, ContactPoint, ContactState,
