@@ -42,8 +42,10 @@ use crate::geometry::{HelixLayer, Strand};
 const POINTS: usize = 32;
 
 /// Curvature of the bend used for the second difference, as a fraction of 1 / R (-): the
-/// energy is even in the curvature, so the central difference errs by O(kappa^2 R^2) = 1e-6.
-const BEND: f64 = 1e-3;
+/// energy is even in the curvature, so the central difference errs by the quartic term, the
+/// wire's stretch `E A (kappa^2 R^2)^2` against its bending `E I kappa^2`, that is
+/// O((kappa R)^2 (R / r_w)^2) = 1e-8 (R / r_w)^2 relative.
+const BEND: f64 = 1e-4;
 
 /// Material constants and rest geometry of one helical wire.
 #[derive(Debug, Clone, Copy)]
