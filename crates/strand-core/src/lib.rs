@@ -14,6 +14,7 @@ pub mod error;
 pub mod geometry;
 pub mod round_off;
 pub mod section;
+pub mod stretched_bending;
 pub mod summary;
 pub mod wire;
 pub mod wire_bending;
@@ -28,5 +29,6 @@ pub use section::{
     LawKind, PlanarMoment, PlanarResponse, PressureSystem, SectionLaw, SectionOptions,
     SectionResponse, SlipLimit, SlipPressure, Station, WireReport, WireState,
 };
+pub use stretched_bending::stretched_min_bending_stiffness;
 pub use summary::{LayerSummary, SectionPoint, StrandSummary};
 pub use wire_bending::BaseStiffness;

@@ -60,6 +60,7 @@ fn run_with(
         max_halvings: 6,
         core_springs: springs("CORE"),
         wire_springs: springs("WIRE"),
+        pressure: Default::default(),
     };
     let t = std::time::Instant::now();
     let curve = test.run(&s).expect("bending test");
@@ -163,6 +164,7 @@ fn bonded(
         max_halvings: 6,
         core_springs: core,
         wire_springs: SpringScale::default(),
+        pressure: Default::default(),
     }
 }
 
@@ -292,6 +294,7 @@ fn slipping_contacts_converge_without_halving() {
         max_halvings: 0,
         core_springs: SpringScale::default(),
         wire_springs: SpringScale::default(),
+        pressure: Default::default(),
     };
     let curve = test.run(&s).expect("every step converges at the first try");
     let last = curve.last().unwrap();
@@ -321,6 +324,7 @@ fn wire_forces() {
         max_halvings: 6,
         core_springs: SpringScale::default(),
         wire_springs: SpringScale::default(),
+        pressure: Default::default(),
     };
     let (curve, m, state) = test.run_with_state(&s).unwrap();
     let kappa = curve[1].curvature;

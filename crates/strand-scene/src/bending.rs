@@ -207,6 +207,7 @@ pub fn run_bending(
         max_halvings: 6,
         core_springs: Default::default(),
         wire_springs: Default::default(),
+        pressure: Default::default(),
     };
     let last = *curvatures.last().expect("at least one curvature");
     let start = Instant::now();

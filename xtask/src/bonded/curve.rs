@@ -189,6 +189,7 @@ fn test(
         max_halvings: 8,
         core_springs: SpringScale::default(),
         wire_springs: SpringScale::default(),
+        pressure: Default::default(),
     }
 }
 

@@ -329,6 +329,7 @@ fn bending_test(
         max_halvings: 6,
         core_springs: v.core,
         wire_springs: v.wire,
+        pressure: Default::default(),
     }
 }
 
