@@ -57,6 +57,9 @@ pub enum Mark {
     /// Thin solid line, for paths that turn back on themselves (hysteresis loops, orbits):
     /// the thick line's mitred joints would draw spikes past a reversal in the bitmap.
     Trace,
+    /// A [`Mark::Trace`] in a pale tint of its colour: the background of a path (the whole
+    /// run under its last cycle).
+    Faint,
 }
 
 /// One curve or point set of a chart.
@@ -138,6 +141,13 @@ pub fn color(i: usize) -> RGBColor {
         RGBColor(240, 228, 66),
     ];
     C[i % C.len()]
+}
+
+/// A pale tint of `c`: a quarter of it over white (opaque, so that overlapping pale paths do
+/// not darken into a solid line).
+pub fn pale(c: RGBColor) -> RGBColor {
+    let tint = |v: u8| (0.25 * f64::from(v) + 0.75 * 255.0).round() as u8;
+    RGBColor(tint(c.0), tint(c.1), tint(c.2))
 }
 
 /// Registers the embedded DejaVu Sans as plotters' `sans-serif` (once per process).
@@ -283,6 +293,9 @@ macro_rules! draw_series {
                 Mark::Trace => $ctx
                     .draw_series(LineSeries::new(pts, c.stroke_width(1)))
                     .map_err(err)?,
+                Mark::Faint => $ctx
+                    .draw_series(LineSeries::new(pts, pale(c).stroke_width(1)))
+                    .map_err(err)?,
                 Mark::Dashed => $ctx
                     .draw_series(DashedLineSeries::new(pts, 8, 5, c.stroke_width(2)))
                     .map_err(err)?,
@@ -306,6 +319,7 @@ macro_rules! draw_series {
             };
             if !s.label.is_empty() {
                 let mark = s.mark;
+                let c = if mark == Mark::Faint { pale(c) } else { c };
                 // Two segments: contiguous for lines, apart for dashes, one thick dot for
                 // points.
                 let (a, b, w) = match mark {
@@ -343,6 +357,18 @@ where
     let yr = match chart.y_range {
         Some(r) if !(chart.log || chart.log_y) => r,
         _ => range(all().map(|p| p.1), chart.log || chart.log_y),
+    };
+    // Room at the bottom of a linear range for the note's lines (18 px each, 20 px up from
+    // the bottom of a plot area of about PLOT_MARGIN less than the chart), so that the note
+    // covers no curve.
+    let yr = match &chart.note {
+        Some(text) if !(chart.log || chart.log_y || chart.equal_aspect) => {
+            let (_, h) = root.dim_in_pixel();
+            let rows = text.lines().count() as f64;
+            let share = (20.0 + 18.0 * rows) / (f64::from(h) - PLOT_MARGIN.1).max(1.0);
+            (yr.0 - share * (yr.1 - yr.0), yr.1)
+        }
+        _ => yr,
     };
     let mut builder = ChartBuilder::on(root);
     builder
@@ -406,7 +432,8 @@ where
 
 /// The corner of the plot area where the legend hides the fewest points: of the four boxes of
 /// 40 % of the width and 30 % of the height at the corners (on the axes' scales, `log` for a
-/// log axis), the one holding the fewest; the upper right on a tie.
+/// log axis), the one holding the fewest; the upper right on a tie; one of the upper two when
+/// the chart has a note (printed at the bottom).
 fn legend_corner(
     chart: &Chart,
     x: (f64, f64),
@@ -434,7 +461,9 @@ fn legend_corner(
             counts[i] += usize::from(inside);
         }
     }
-    match (0..4).min_by_key(|&i| counts[i]).unwrap_or(0) {
+    // A note is printed along the bottom of the plot area: the legend keeps to the top.
+    let corners = if chart.note.is_some() { 0..2 } else { 0..4 };
+    match corners.min_by_key(|&i| counts[i]).unwrap_or(0) {
         0 => SeriesLabelPosition::UpperRight,
         1 => SeriesLabelPosition::UpperLeft,
         2 => SeriesLabelPosition::LowerRight,

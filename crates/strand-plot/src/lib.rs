@@ -3,6 +3,7 @@
 //! reports of `cargo xtask`, and the charts of a run ([`plot_run`], `strand run --plot`).
 
 pub mod chart;
+pub mod cycle;
 mod run_charts;
 pub mod table;
 

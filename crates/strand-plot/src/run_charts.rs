@@ -221,29 +221,10 @@ pub fn plot_run(
             ));
             charts.push((
                 format!("{stem}-loop"),
-                Chart {
-                    title: format!("{name}: moment-curvature at s = {} m", short(at)),
-                    x_label: "curvature (1/m)".into(),
-                    y_label: "bending moment (N m)".into(),
-                    series: runs
-                        .iter()
-                        .map(|(s, t)| {
-                            let (k, m) = (t.column("curvature"), t.column("moment"));
-                            Series::xy(
-                                format!(
-                                    "{}: work of M dkappa {} J/m",
-                                    label(s),
-                                    short(loop_work(&k, &m))
-                                ),
-                                &k,
-                                &m,
-                                Mark::Trace,
-                                model_color(&s.model),
-                            )
-                        })
-                        .collect(),
-                    ..Chart::default()
-                },
+                probe_loop(
+                    format!("{name}: moment-curvature at s = {} m", short(at)),
+                    &runs,
+                ),
             ));
         }
         let ranges: Vec<(&RunSummary, Table)> = summaries
@@ -348,8 +329,74 @@ fn loop_work(kappa: &[f64], moment: &[f64]) -> f64 {
         .sum()
 }
 
-/// The motion at a probe over time: each model's coordinate that moves most (of x, y, z over
-/// all the runs), as its displacement from where it starts.
+/// The moment-curvature path at a probe, per model. Where the curvature cycles (at least two
+/// upward crossings of the middle of its late range), the whole run is drawn pale and its last
+/// full cycle in full colour, with that cycle's area (the work of M dkappa over it, J/m): a
+/// long run's thousands of frames of a growing or decaying motion overlap into a tangle, and
+/// the last cycle is the loop the motion settled to. Else the whole path, with its work.
+fn probe_loop(title: String, runs: &[(&RunSummary, Table)]) -> Chart {
+    let mut pale = Vec::new();
+    let mut solid = Vec::new();
+    let mut cycled = false;
+    for (s, t) in runs {
+        let (time, k, m) = (t.column("t"), t.column("curvature"), t.column("moment"));
+        let color = model_color(&s.model);
+        match crate::cycle::last_cycle(&k) {
+            Some(c) => {
+                cycled = true;
+                pale.push(Series::xy(
+                    format!("{}: the whole run", label(s)),
+                    &k,
+                    &m,
+                    Mark::Faint,
+                    color,
+                ));
+                solid.push(Series::xy(
+                    format!(
+                        "{}: t = {} to {} s, area {} J/m",
+                        label(s),
+                        short(time[*c.start()]),
+                        short(time[*c.end()]),
+                        short(loop_work(&k[c.clone()], &m[c.clone()]))
+                    ),
+                    &k[c.clone()],
+                    &m[c],
+                    Mark::Trace,
+                    color,
+                ));
+            }
+            None => solid.push(Series::xy(
+                format!(
+                    "{}: work of M dkappa {} J/m",
+                    label(s),
+                    short(loop_work(&k, &m))
+                ),
+                &k,
+                &m,
+                Mark::Trace,
+                color,
+            )),
+        }
+    }
+    pale.extend(solid);
+    Chart {
+        title,
+        x_label: "curvature (1/m)".into(),
+        y_label: "bending moment (N m)".into(),
+        series: pale,
+        note: cycled.then(|| {
+            "solid: the last full cycle of the curvature; its area (M dkappa) is the slip \
+             work where the loop closes; pale: the whole run"
+                .to_string()
+        }),
+        ..Chart::default()
+    }
+}
+
+/// The motion at a probe over time: each coordinate (of x, y, z) that moves at least a fifth
+/// as far as the one that moves most (over all the runs), as its displacement from where it
+/// starts; the one that moves most solid, the others dashed. A span pulled along its length
+/// moves along x by the pull and across by its swing, and both show.
 fn probe_motion(title: String, runs: &[(&RunSummary, Table)]) -> Chart {
     let spread = |c: &str| {
         runs.iter()
@@ -361,29 +408,41 @@ fn probe_motion(title: String, runs: &[(&RunSummary, Table)]) -> Chart {
             .filter(|v| v.is_finite())
             .fold(0.0f64, f64::max)
     };
-    let axis = ["x", "y", "z"]
+    let mut axes: Vec<(&str, f64)> = ["x", "y", "z"]
         .into_iter()
-        .max_by(|a, b| spread(a).total_cmp(&spread(b)))
-        .unwrap_or("y");
+        .map(|a| (a, spread(a)))
+        .collect();
+    axes.sort_by(|a, b| b.1.total_cmp(&a.1));
+    let top = axes[0].1;
+    axes.retain(|(_, d)| *d >= 0.2 * top);
+    let many = axes.len() > 1;
+    let mut series = Vec::new();
+    for (i, (axis, _)) in axes.iter().enumerate() {
+        for (s, t) in runs {
+            let v = t.column(axis);
+            let first = v.first().copied().unwrap_or(0.0);
+            let d: Vec<f64> = v.iter().map(|x| x - first).collect();
+            let name = if many {
+                format!("{}: {axis}", label(s))
+            } else {
+                label(s)
+            };
+            let mark = if i == 0 { Mark::Line } else { Mark::Dashed };
+            series.push(Series::xy(
+                name,
+                &t.column("t"),
+                &d,
+                mark,
+                model_color(&s.model),
+            ));
+        }
+    }
+    let names: Vec<&str> = axes.iter().map(|a| a.0).collect();
     Chart {
         title,
         x_label: "t (s)".into(),
-        y_label: format!("displacement along {axis} (m)"),
-        series: runs
-            .iter()
-            .map(|(s, t)| {
-                let v = t.column(axis);
-                let first = v.first().copied().unwrap_or(0.0);
-                let d: Vec<f64> = v.iter().map(|x| x - first).collect();
-                Series::xy(
-                    label(s),
-                    &t.column("t"),
-                    &d,
-                    Mark::Line,
-                    model_color(&s.model),
-                )
-            })
-            .collect(),
+        y_label: format!("displacement along {} (m)", names.join(", ")),
+        series,
         ..Chart::default()
     }
 }

@@ -12,6 +12,8 @@
 //!   `dissipated` of `energy.csv`.
 
 mod common;
+#[path = "common/section_loop.rs"]
+mod section_loop;
 
 use common::csv_columns;
 use serde_json::json;
@@ -99,7 +101,7 @@ fn a_cycled_section_closes_on_the_laws_loop_and_its_area_is_the_slip_work() {
     let mut largest_loop = 0.0f64;
     for (&(s, weight), p) in points.iter().zip(&probes) {
         let c = csv_columns(&dir.join(format!("probe_{p}.csv")));
-        let (t, kappa, moment, tension) = (&c["t"], &c["curvature"], &c["moment"], &c["tension"]);
+        let (t, tension) = (&c["t"], &c["tension"]);
         let st = law.station(s);
         // The law's all-stick tangent (its largest): the slope of M(kappa) lies in
         // [K_min, K_stick] along any path.
@@ -108,56 +110,15 @@ fn a_cycled_section_closes_on_the_laws_loop_and_its_area_is_the_slip_work() {
         let k_stick = law
             .planar(&st, tension[1] / ea, 1e-9, &zero, &mut scratch)
             .moment_curvature;
-        // Drive the law through the probe's frames.
-        let mut slip = vec![0.0; law.state_len()];
-        let mut trial = slip.clone();
-        let (mut energy, mut work) = (vec![0.0], vec![0.0]);
-        let scale = moment.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        for k in 1..t.len() {
-            let r = law.planar(&st, tension[k] / ea, kappa[k], &slip, &mut trial);
-            // Same strain, curvature and state as the run: the same moment, to round-off
-            // (the strain read back from the tension, EA eps / EA).
-            assert!(
-                (r.moment - moment[k]).abs() <= 1e-9 * scale.max(1e-12),
-                "s = {s}, t = {}: the probe's moment {} vs the law's {}",
-                t[k],
-                moment[k],
-                r.moment
-            );
-            slip.copy_from_slice(&trial);
-            energy.push(r.energy);
-            work.push(work[k - 1] + r.slip_work);
-        }
-        total_slip_work += weight * work[t.len() - 1];
+        // Drive the law through the probe's frames: the same moments, to round-off.
+        let path = section_loop::drive(&law, &st, &c);
+        total_slip_work += weight * path.work[t.len() - 1];
         // One full cycle, between the end's visits of +A at t = 0.6 s and 1 s.
         let at = |time: f64| t.iter().position(|x| (x - time).abs() < 1e-9).unwrap();
-        let (a, b) = (at(0.6), at(1.0));
-        let mut area = 0.0;
-        let mut axial = 0.0;
-        let mut bound = 0.0;
-        for k in a + 1..=b {
-            let dk = kappa[k] - kappa[k - 1];
-            area += 0.5 * (moment[k] + moment[k - 1]) * dk;
-            axial += 0.5 * (tension[k] + tension[k - 1]) * (tension[k] - tension[k - 1]) / ea;
-            // The trapezoidal rule on a step where the slope of M(kappa) stays in
-            // [K_min, K_stick] errs by at most (K_stick - K_min) dkappa^2 / 8.
-            bound += (k_stick - k_min) * dk * dk / 8.0;
-        }
-        let slip_work = work[b] - work[a];
-        let stored = energy[b] - energy[a];
-        // Work balance of the section over the cycle: M dkappa + N deps = dE + slip work.
-        let balance = area + axial - stored - slip_work;
-        let roundoff = 1e-9 * (area.abs() + axial.abs() + stored.abs() + slip_work);
-        assert!(
-            balance.abs() <= bound + roundoff,
-            "s = {s}: loop area {area:e} + axial work {axial:e} - stored {stored:e} vs slip work \
-             {slip_work:e} (off by {balance:e}, bound {bound:e})"
-        );
-        largest_loop = largest_loop.max(area);
-        eprintln!(
-            "s = {s:.4}: loop area {area:.4e} J/m, slip work {slip_work:.4e} J/m, stored change \
-             {stored:.2e}, axial {axial:.2e}, trapezoid bound {bound:.2e}"
-        );
+        let cycle = section_loop::balance(&c, &path, ea, (k_min, k_stick), at(0.6), at(1.0));
+        cycle.check(&format!("s = {s}"));
+        largest_loop = largest_loop.max(cycle.area);
+        eprintln!("s = {s:.4}: {cycle:?}");
     }
     // The cycle slips: a loop with area, not a line.
     assert!(largest_loop > 0.0, "no loop: {largest_loop}");

@@ -30,7 +30,8 @@ pub(crate) struct Row {
     pub stiffness: f64,
     /// Bending moment (N m): the section law's at the row's strain, curvature and slip state,
     /// signed like the curvature (planar) or its magnitude (3D); at an end, with a law with
-    /// slip state, the stiffness times the curvature.
+    /// slip state, the slip state of the nearest bending point (a state lives at the bending
+    /// points only).
     pub moment: f64,
     /// Curvature components (kappa_y, kappa_z) (1/m).
     kappa: [f64; 2],
@@ -42,8 +43,10 @@ pub(crate) struct Row {
 
 /// The rows of `centerline.csv` for the state `(q, slip, points)`: s = 0, every bending point,
 /// s = L. The ends take the elements' fields there (position, strain, curvature) and the
-/// section law's stiffness at them; with a law with slip state, the nearest bending point's
-/// stiffness. A row that cannot be evaluated (a degenerate element) is left out.
+/// section law's moment and secant at them; with a law with slip state, from the nearest
+/// bending point's state (the law's response to the end's strain and curvature from it, not
+/// that point's secant times the end's curvature, which a residual slip moment at a curvature
+/// near zero sends far out). A row that cannot be evaluated (a degenerate element) is left out.
 pub(crate) fn rows(beam: &Beam, q: &[f64], slip: &[f64], points: &[PointState]) -> Vec<Row> {
     let law = beam.law();
     let ea = law.axial_stiffness();
@@ -90,21 +93,6 @@ pub(crate) fn rows(beam: &Beam, q: &[f64], slip: &[f64], points: &[PointState]) 
             (false, ky, kz) if ky != 0.0 => r.moment / ky.hypot(kz),
             _ => secant(law, &st, r.eps, r.kappa, sl),
         };
-    }
-    // A law with slip state has it at the bending points only: at the ends, whose curvature
-    // and state differ from the nearest point's, the stiffness is that point's (a slipped
-    // state carries a residual moment, so the law at another curvature would give a secant
-    // that is not the strand's).
-    let n = out.len();
-    if law.state_len() > 0 && n > 2 {
-        if out[0].s == 0.0 {
-            out[0].stiffness = out[1].stiffness;
-            out[0].moment = out[0].stiffness * out[0].curvature;
-        }
-        if out[n - 1].s == beam.length() {
-            out[n - 1].stiffness = out[n - 2].stiffness;
-            out[n - 1].moment = out[n - 1].stiffness * out[n - 1].curvature;
-        }
     }
     out
 }
