@@ -249,6 +249,18 @@ pub fn nearest_core_segment<P: Placement>(
     point: &Vector3<f64>,
     guess: usize,
 ) -> usize {
+    core_search(core, segments, point, guess).0
+}
+
+/// The local search of [`nearest_core_segment`]: the segment found and, when the search
+/// ended on it (not by running out of moves), the projection of `point` on its axis from
+/// its centre (m), `(point - c) . t`, which [`closest_on_axis`] would compute again.
+fn core_search<P: Placement>(
+    core: &[P],
+    segments: &[Segment],
+    point: &Vector3<f64>,
+    guess: usize,
+) -> (usize, Option<f64>) {
     let mut j = guess.min(core.len() - 1);
     let mut last_move = 0i8;
     for _ in 0..core.len() {
@@ -262,18 +274,22 @@ pub fn nearest_core_segment<P: Placement>(
             j -= 1;
             last_move = -1;
         } else {
-            break;
+            return (j, Some(s));
         }
     }
-    j
+    (j, None)
 }
 
 /// Closest point (m) to `p` on the axis of the core segment at `core` of length `length`.
 pub fn closest_on_axis<P: Placement>(p: &Vector3<f64>, core: &P, length: f64) -> Vector3<f64> {
-    let t = core.tangent();
-    let c = core.centre();
-    let s = (p - c).dot(&t).clamp(-0.5 * length, 0.5 * length);
-    c + t * s
+    let s = (p - core.centre()).dot(&core.tangent());
+    on_axis(core, length, s)
+}
+
+/// The point of the axis of the core segment at `core` (length `length`, m) at the axial
+/// coordinate `s` from its centre (m), clamped to the segment.
+fn on_axis<P: Placement>(core: &P, length: f64, s: f64) -> Vector3<f64> {
+    core.centre() + core.tangent() * s.clamp(-0.5 * length, 0.5 * length)
 }
 
 /// Evaluates contact point `cp` of the wire segment at `wire` against core segment `j` at
@@ -312,19 +328,48 @@ pub fn evaluate_pair<W: Placement, C: Placement>(
 pub(crate) fn respond<W: Placement, C: Placement>(
     law: &ContactLaw,
     history: &ContactHistory,
+    pq: (&Vector3<f64>, &Vector3<f64>),
+    rest_distance: f64,
+    share: f64,
+    wire: &W,
+    partner: (&C, usize),
+    anchor_core: &C,
+) -> ContactLoad {
+    let mut out = ContactLoad::open_at(partner.1);
+    respond_into(
+        law,
+        history,
+        pq,
+        rest_distance,
+        share,
+        wire,
+        partner,
+        anchor_core,
+        &mut out,
+    );
+    out
+}
+
+/// [`respond`] written into `out` (the load buffer's slot: no copy of the result).
+#[allow(clippy::too_many_arguments)]
+fn respond_into<W: Placement, C: Placement>(
+    law: &ContactLaw,
+    history: &ContactHistory,
     (p, q): (&Vector3<f64>, &Vector3<f64>),
     rest_distance: f64,
     share: f64,
     wire: &W,
     (cj, j): (&C, usize),
     anchor_core: &C,
-) -> ContactLoad {
+    out: &mut ContactLoad,
+) {
     let (p, q) = (*p, *q);
     let d = p - q;
     let dist = d.norm();
     let gap = dist - rest_distance;
     if gap >= 0.0 || dist == 0.0 {
-        return ContactLoad::open_at(j);
+        *out = ContactLoad::open_at(j);
+        return;
     }
     let n = d / dist;
     let fn_ = law.normal_stiffness * (-gap);
@@ -356,7 +401,7 @@ pub(crate) fn respond<W: Placement, C: Placement>(
     let ft = -kt * u_el;
     let f_n = n * fn_;
     let (c, cc) = (wire.centre(), cj.centre());
-    ContactLoad {
+    *out = ContactLoad {
         core_segment: j,
         force_wire: f_n + ft,
         torque_wire: (p - c).cross(&f_n) + (aw - c).cross(&ft),
@@ -375,7 +420,7 @@ pub(crate) fn respond<W: Placement, C: Placement>(
             on_wire: wire.to_body(&(x - c)),
             on_core: cj.to_body(&(x - cc)),
         },
-    }
+    };
 }
 
 /// Evaluates contact point `cp` of the wire segment at `wire` against the core (poses
@@ -388,24 +433,47 @@ pub fn evaluate<P: Placement>(
     core: &[P],
     core_segments: &[Segment],
 ) -> ContactLoad {
+    let mut out = ContactLoad::open_at(history.core_segment);
+    evaluate_into(cp, history, wire, core, core_segments, &mut out);
+    out
+}
+
+/// [`evaluate`] written into `out` (a load buffer's slot: no copy of the result).
+pub fn evaluate_into<P: Placement>(
+    cp: &ContactPoint,
+    history: &ContactHistory,
+    wire: &P,
+    core: &[P],
+    core_segments: &[Segment],
+    out: &mut ContactLoad,
+) {
     let p = wire.point(&cp.offset);
-    let j = nearest_core_segment(core, core_segments, &p, history.core_segment);
+    let (j, s) = core_search(core, core_segments, &p, history.core_segment);
+    let (cj, length) = (&core[j], core_segments[j].length);
+    // The search's last projection is the one the closest point needs (the search always
+    // ends on a segment it projected on: it moves at most len - 1 times one way).
+    let q = match s {
+        Some(s) => on_axis(cj, length, s),
+        None => closest_on_axis(&p, cj, length),
+    };
     let anchor = &core[history.core_segment.min(core.len() - 1)];
-    evaluate_pair(
-        cp,
+    respond_into(
+        &cp.law,
         history,
+        (&p, &q),
+        cp.rest_distance,
+        cp.core_share,
         wire,
-        &core[j],
-        j,
-        core_segments[j].length,
+        (cj, j),
         anchor,
-    )
+        out,
+    );
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::segment::Pose;
+    use crate::segment::{Frame, Pose};
     use nalgebra::UnitQuaternion;
 
     fn point(k: f64) -> ContactPoint {
@@ -485,6 +553,65 @@ mod tests {
             assert_eq!(l.state, ContactState::Open);
             assert_eq!(l.force_wire, Vector3::zeros());
         }
+    }
+
+    /// `evaluate` (the search's last projection reused, the result written in place) against
+    /// the composition it replaces: the search, then `evaluate_pair` (closest point computed
+    /// afresh), bit for bit, on a kinked core chain, with open, stuck and slipping contacts,
+    /// committed histories and points beyond the chain's ends.
+    #[test]
+    fn evaluate_is_search_then_pair() {
+        let n = 6;
+        let segs: Vec<_> = (0..n)
+            .map(|k| Segment::cylinder(0.01 + 1e-3 * k as f64, 1.5e-3, 7801.0))
+            .collect();
+        let core: Vec<Frame> = (0..n)
+            .map(|k| {
+                let turn = UnitQuaternion::from_scaled_axis(Vector3::new(
+                    0.1 * k as f64,
+                    0.3 * (k % 2) as f64,
+                    -0.2,
+                ));
+                Frame::of(&Pose::new(
+                    Vector3::new(0.01 * k as f64, 1e-4 * k as f64, -2e-4),
+                    turn,
+                ))
+            })
+            .collect();
+        let mut cp = point(1e6);
+        cp.offset = Vector3::new(1e-3, -2e-4, 3e-4);
+        let mut compared = [0usize; 3];
+        for (i, x) in [-0.02, 0.0, 0.004, 0.013, 0.027, 0.038, 0.05, 0.09]
+            .into_iter()
+            .enumerate()
+        {
+            for (guess, lift) in [(0, 2.2e-3), (3, 2.45e-3), (5, 2.6e-3), (2, 2.3e-3)] {
+                let turn =
+                    UnitQuaternion::from_scaled_axis(Vector3::new(0.2, -0.1, 0.05 * i as f64));
+                let wire = Frame::of(&Pose::new(Vector3::new(x, lift, 1e-4), turn));
+                for history in [
+                    ContactHistory::open(guess),
+                    ContactHistory {
+                        core_segment: guess,
+                        closed: true,
+                        displacement: Vector3::new(1e-7, -3e-7, 2e-7),
+                        on_wire: Vector3::new(-2e-4, 1e-3, 0.0),
+                        on_core: Vector3::new(1e-3, 1.4e-3, 5e-4),
+                    },
+                ] {
+                    let got = evaluate(&cp, &history, &wire, &core, &segs);
+                    let p = wire.point(&cp.offset);
+                    let j = nearest_core_segment(&core, &segs, &p, history.core_segment);
+                    let anchor = &core[history.core_segment.min(n - 1)];
+                    let want =
+                        evaluate_pair(&cp, &history, &wire, &core[j], j, segs[j].length, anchor);
+                    assert_eq!(got, want, "x {x}, guess {guess}, lift {lift}");
+                    compared[got.state as usize] += 1;
+                }
+            }
+        }
+        // Every branch of the law was compared.
+        assert!(compared.iter().all(|&c| c > 0), "{compared:?}");
     }
 
     #[test]

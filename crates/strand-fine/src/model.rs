@@ -708,13 +708,13 @@ impl FineModel {
             let nc = w.contacts.len();
             let (to_core, to_wires) = l.contacts.split_at_mut(nc);
             for ((cp, h), out) in w.contacts.iter().zip(hist).zip(to_core) {
-                let c = contact::evaluate(cp, h, &frames[cp.segment], &all_frames[0], core_segs);
+                contact::evaluate_into(cp, h, &frames[cp.segment], &all_frames[0], core_segs, out);
+                let c = &*out;
                 l.forces[cp.segment] += c.force_wire;
                 l.torques[cp.segment] += c.torque_wire;
                 ce += c.normal_energy;
                 fe += c.tangential_energy;
                 sw += c.slip_work;
-                *out = c;
             }
             for ((lk, h), out) in w.links.iter().zip(&hist[nc..]).zip(to_wires.iter_mut()) {
                 let k = lk.segment;
