@@ -37,6 +37,8 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let arg = |i: usize, d: f64| args.get(i).map_or(d, |s| s.parse().unwrap());
     let (g, factor) = (arg(1, 8.0), arg(2, 1.0));
+    // Optional: the damping rate from the ramp's end on, as a factor on the default rate.
+    let rest_factor = args.get(3).map(|s| s.parse::<f64>().unwrap());
     let strand = Strand::new(StrandSpec::paper(0.4, 2.0e8, 7801.0)).unwrap();
     let mut m = FineModel::from_strand(
         &strand,
@@ -53,11 +55,13 @@ fn main() {
     let (gamma, ramp) = damping_and_ramp(&m, &opts.settle);
     opts.settle.damping_rate = Some(factor * gamma);
     opts.settle.ramp_time = Some(ramp);
+    opts.settle.rest_damping_rate = rest_factor.map(|f| f * gamma);
     let mut state = m.rest_state();
     let r = solve_settled(&m, &mut state, &opts, &mut |_, _, _| {}).unwrap();
     let tip = *m.core_centreline(&state).last().unwrap();
     println!(
-        "g {g} gamma {:.4} 1/s ({factor} x {gamma:.4}), ramp {ramp:.4} s: {} steps of {:.4e} s, \
+        "g {g} gamma {:.4} 1/s ({factor} x {gamma:.4}; after the ramp {rest_factor:?} x), ramp \
+         {ramp:.4} s: {} steps of {:.4e} s, \
          {:.3} s, Newton {} it in {} attempts, residual {:.2e}, tip ({:.10}, {:.10}, {:.10}) \
          [{:.1} s CPU]",
         factor * gamma,

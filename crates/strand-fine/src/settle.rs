@@ -108,6 +108,12 @@ pub struct SettleOptions {
     /// 9.6e-6 s; the axial inertia four or eight times its value gives 9.62e-6 and
     /// 9.65e-6 s, so the spin no longer sets it). Default true.
     pub isotropic_inertia: bool,
+    /// Damping rate (1/s) from the end of the gravity ramp on (the motion to rest at full
+    /// load), switched at the first residual check at or after the ramp's end; `None`:
+    /// `damping_rate` throughout (default). A study option: a larger rate takes the stiff
+    /// modes out faster once the load is applied, but the modes below half of it then
+    /// decay slower, and with friction the state reached depends on the motion.
+    pub rest_damping_rate: Option<f64>,
 }
 
 impl Default for SettleOptions {
@@ -122,6 +128,7 @@ impl Default for SettleOptions {
             tolerance: 1e-4,
             check_every: 100,
             isotropic_inertia: true,
+            rest_damping_rate: None,
         }
     }
 }
@@ -229,6 +236,8 @@ struct DampedMotion {
     int: Integrator,
     gamma: f64,
     ramp: f64,
+    /// Damping rate from the ramp's end on ([`SettleOptions::rest_damping_rate`]).
+    rest_gamma: Option<f64>,
     sc: Scales,
     check: u64,
 }
@@ -256,6 +265,7 @@ impl DampedMotion {
             int,
             gamma,
             ramp,
+            rest_gamma: options.rest_damping_rate,
             sc,
             check: options.check_every.max(1) as u64,
         }
@@ -277,6 +287,9 @@ impl DampedMotion {
         let (mut ratio, mut residual) = (f64::INFINITY, f64::INFINITY);
         while self.int.time < until && self.int.steps < max_steps {
             let steps = self.check.min(max_steps - self.int.steps);
+            if let Some(rate) = self.rest_gamma.filter(|_| self.int.time >= ramp) {
+                self.int.damping_rate = rate;
+            }
             self.int.advance(model, state, steps, &factor);
             (ratio, _, residual) = residual_norms(self.int.loads(), &self.sc);
             if !ratio.is_finite() {
