@@ -12,7 +12,9 @@
 //!   observed orders that agree, capped at 2), its finest mesh's estimated error required below 5e-4 L; the equivalent
 //!   model at 32 and 64 elements with each base stiffness; the default (Costello) at 64
 //!   elements within 1e-3 L of the fine model's extrapolated tip (and reported against its
-//!   finest).
+//!   finest). `--coarse-first` refines 2.5, 5, 10, 20 segments per pitch instead and runs 40
+//!   only for a strand whose two orders from those do not agree (same rule, a quarter of the
+//!   cost where they agree: each doubling costs about four times the one before).
 //!
 //! It prints one table and writes `target/stiffness/report.{md,json}`; `--quick` runs the
 //! bending test at 12 and 24 segments per pitch only (seconds).
@@ -44,6 +46,11 @@ pub struct StiffnessArgs {
     /// `stiffness` markers); only for a full run.
     #[arg(long)]
     pub update_docs: bool,
+    /// The cheaper refinement of the fine cantilevers: 2.5, 5, 10, 20 segments per pitch, and
+    /// 40 only for a strand whose two observed orders from those four do not agree (the finest
+    /// mesh costs about four times the one before; see [`coarse_first_levels`]).
+    #[arg(long)]
+    pub coarse_first: bool,
 }
 
 /// Lay angles of the bending test (deg).
@@ -59,6 +66,24 @@ const TIP_TOL: f64 = 1e-3;
 const FINE_ERROR: f64 = 5e-4;
 /// Segments per pitch of the fine cantilevers: four levels, for two order estimates.
 const FINE_SPP: [f64; 4] = [5.0, 10.0, 20.0, 40.0];
+/// With `--coarse-first`: the four levels tried first, one coarser than [`FINE_SPP`] instead
+/// of the finest.
+const COARSE_FIRST_SPP: [f64; 4] = [2.5, 5.0, 10.0, 20.0];
+
+/// The four meshes (indices into `levels`, coarse first, each twice the one before) whose
+/// changes judge the fine model under `--coarse-first`: the four coarsest when their two
+/// observed orders agree (Richardson's rule, `strand_core::convergence`), else the four
+/// finest, and `None` while the finest of `levels` has not been run (`changes` holds the
+/// changes between successive levels run so far).
+pub fn coarse_first_levels(changes: &[f64]) -> Option<[usize; 4]> {
+    match changes {
+        [d1, d2, d3] => Richardson::from_changes([*d1, *d2, *d3], 2.0, 2.0)
+            .established()
+            .then_some([0, 1, 2, 3]),
+        [_, _, _, _] => Some([1, 2, 3, 4]),
+        _ => None,
+    }
+}
 /// Elements of the equivalent cantilevers.
 const ELEMENTS: [usize; 2] = [32, 64];
 
@@ -85,7 +110,11 @@ pub fn run(args: &StiffnessArgs) -> anyhow::Result<Report> {
         for path in names {
             let scene =
                 Scene::load(&path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-            rows.extend(cantilever(&scene, &out.join("runs").join(&scene.name))?);
+            rows.extend(cantilever(
+                &scene,
+                &out.join("runs").join(&scene.name),
+                args.coarse_first,
+            )?);
         }
     }
     let report = Report::new(
@@ -225,15 +254,18 @@ fn distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 
 /// The cantilever rows of one scene: the fine model's tips and its convergence, then the
 /// equivalent model's tip with each base stiffness against the finest.
-fn cantilever(scene: &Scene, out: &std::path::Path) -> anyhow::Result<Vec<Row>> {
+fn cantilever(
+    scene: &Scene,
+    out: &std::path::Path,
+    coarse_first: bool,
+) -> anyhow::Result<Vec<Row>> {
     let name = &scene.name;
     let strand = &scene.strand;
     let l = strand.length();
     let pitch = strand.layers().first().context("a stranded scene")?.pitch;
     let penetration = scene.file.models.fine.as_ref().and_then(|f| f.penetration);
     let mut rows = Vec::new();
-    let mut fine = Vec::new();
-    for spp in FINE_SPP {
+    let run_fine = |spp: f64| -> anyhow::Result<(i64, [f64; 3])> {
         let segments = (spp * l / pitch).round().max(2.0) as i64;
         let models = ModelsFile {
             fine: Some(FineModelFile {
@@ -243,8 +275,28 @@ fn cantilever(scene: &Scene, out: &std::path::Path) -> anyhow::Result<Vec<Row>> 
             }),
             ..Default::default()
         };
-        let t = tip(scene, models, None, &out.join(format!("fine-{segments}")))?;
-        fine.push((segments, t));
+        Ok((
+            segments,
+            tip(scene, models, None, &out.join(format!("fine-{segments}")))?,
+        ))
+    };
+    let mut fine = Vec::new();
+    if coarse_first {
+        for spp in COARSE_FIRST_SPP {
+            fine.push(run_fine(spp)?);
+        }
+        let changes = |f: &[(i64, [f64; 3])]| -> Vec<f64> {
+            f.windows(2).map(|w| distance(&w[0].1, &w[1].1)).collect()
+        };
+        if coarse_first_levels(&changes(&fine)).is_none() {
+            fine.push(run_fine(FINE_SPP[3])?);
+        }
+        let used = coarse_first_levels(&changes(&fine)).expect("four changes decide");
+        fine = used.iter().map(|&i| fine[i]).collect();
+    } else {
+        for spp in FINE_SPP {
+            fine.push(run_fine(spp)?);
+        }
     }
     let finest = fine[fine.len() - 1].1;
     for (segments, t) in &fine {
@@ -349,4 +401,26 @@ fn cantilever(scene: &Scene, out: &std::path::Path) -> anyhow::Result<Vec<Row>> 
         rows.push(row);
     }
     Ok(rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_finest_mesh_runs_only_where_the_coarse_orders_disagree() {
+        // Second-order changes: two orders of 2.0, established on the four coarse meshes.
+        assert_eq!(
+            coarse_first_levels(&[4e-4, 1e-4, 2.5e-5]),
+            Some([0, 1, 2, 3])
+        );
+        // Orders 2.0 and 1.0 disagree: the finest mesh is needed.
+        assert_eq!(coarse_first_levels(&[4e-4, 1e-4, 5e-5]), None);
+        // Then the four finest judge, whatever their orders.
+        assert_eq!(
+            coarse_first_levels(&[4e-4, 1e-4, 5e-5, 1.2e-5]),
+            Some([1, 2, 3, 4])
+        );
+        assert_eq!(coarse_first_levels(&[4e-4, 1e-4]), None);
+    }
 }

@@ -97,7 +97,11 @@ enum Command {
     /// and stiffness beside the scene's section law at the same strain and curvature) and
     /// `DIR/summary.json`.
     Bend {
-        /// Scene file (its `strand`, `law` and `models.fine.penetration` are used).
+        /// Scene file: its `strand` and `law` are used, and `models.fine.penetration`, which on
+        /// a `1+m` strand sets the contacts' normal penalty (the wire sinks by that fraction of
+        /// its diameter at the reference pressure) and on a strand of several layers only
+        /// decides where a wire-to-wire contact counts as a crossing or as a line (the normal
+        /// penalty then follows from the strain relief, `strand_fine::penalty`).
         scene: PathBuf,
         /// Axial tension T (N).
         #[arg(long)]

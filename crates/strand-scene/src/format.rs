@@ -270,7 +270,9 @@ pub struct BeamModelFile {
 pub struct FineModelFile {
     /// Segments per helical wire (the core gets as many over its shorter length).
     pub segments_per_wire: i64,
-    /// Allowed contact penetration as a fraction of the wire diameter (default 1e-3).
+    /// Allowed contact penetration as a fraction of the wire diameter (default 1e-3): the
+    /// normal penalty of a `1+m` strand; on several layers only where a wire-to-wire contact
+    /// turns from a crossing into a line (the penalty follows from the strain relief).
     #[serde(default)]
     pub penetration: Option<f64>,
     /// Bind the wires together at the free end (default false).

@@ -160,7 +160,9 @@ pub struct BeamModel {
 pub struct FineModel {
     /// Segments per helical wire.
     pub segments_per_wire: usize,
-    /// Allowed contact penetration as a fraction of the wire diameter.
+    /// Allowed contact penetration as a fraction of the wire diameter: sets the normal penalty
+    /// of a `1+m` strand; on several layers only where a wire-to-wire contact turns from a
+    /// crossing into a line (`strand_fine::penalty` sets the penalty there).
     pub penetration: f64,
     /// Whether the wires are bound together at the free end.
     pub bind_free_end: bool,

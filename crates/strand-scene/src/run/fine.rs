@@ -140,11 +140,20 @@ pub(crate) fn run_fine(
         }
     }
     if !strand.layers().is_empty() {
+        let penalty = match contact.relief_on(strand) {
+            Some(f) => format!(
+                "normal penalty allowing each layer's contacts to relieve {f:.0e} of its strain; \
+                 the penetration {:.1e} only decides crossing against line contact",
+                m.penetration
+            ),
+            None => format!(
+                "penalty for a penetration of {:.1e} wire diameters",
+                m.penetration
+            ),
+        };
         built.push(format!(
-            "{} wire-to-core contacts (penalty for a penetration of {:.1e} wire diameters, \
-             Coulomb friction mu = {} with stick springs)",
+            "{} wire-to-core contacts ({penalty}, Coulomb friction mu = {} with stick springs)",
             model.contact_count(),
-            m.penetration,
             strand.friction()
         ));
         if model.link_count() > 0 {
