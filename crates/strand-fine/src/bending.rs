@@ -71,13 +71,18 @@ pub enum Pressure {
 impl BendingTest {
     /// The static solve of each load step: one step, relative residual 1e-8, at most 60
     /// Newton iterations, forces measured against `force_scale` (N; the tension, where the
-    /// test has one).
+    /// test has one), and no split of the step's load: the load factor of the static solve
+    /// scales only the sheave pressure, not the end plate's motion, and a split would commit
+    /// the contact histories at a fraction of the pressure the arc needs (a load path the
+    /// test does not impose). A step that fails is retried by the test with half its
+    /// curvature increment ([`BendingTest::max_halvings`]).
     pub fn load_step_statics(force_scale: f64) -> StaticOptions {
         StaticOptions {
             load_steps: 1,
             tolerance: 1e-8,
             max_iterations: 60,
             force_scale: Some(force_scale),
+            min_increment: 1.0,
             ..Default::default()
         }
     }

@@ -176,6 +176,8 @@ fn probe_frictionless_1x19() {
     } else if relief > 0.0 {
         test.contact.normal_penalty = NormalPenalty::StrainRelief(relief);
     }
+    // STICK_LOSS: the stick spring's allowed loss of stiffness (ContactOptions::stick_loss).
+    test.contact.stick_loss = env("STICK_LOSS", test.contact.stick_loss);
     // With friction (MU), curvatures K/4, K/2, K, back to -K and up to K again.
     test.friction = env("MU", 0.0);
     if test.friction > 0.0 {
@@ -584,5 +586,99 @@ fn probe_stable_step() {
         let moving = strand_fine::settle::motion_model(&m, &settle);
         let dt = strand_fine::settle_time_step(&moving, &m.rest_state(), settle.safety);
         println!("{name}: stable step {dt:.4e} s");
+    }
+}
+
+/// Linearity of the loads about the tension state of the 1+6+12 test (SPP, T, MU from the
+/// environment; 3 pitches, histories committed): `|F(x + a v) - F(x) + a K v| / |a K v|`
+/// along a fixed direction `v` moving every segment (1 m per unit `a` in translation, 30 rad
+/// in rotation), for amplitudes `a` from 1e-12 to 1e-7 m, with the closed contacts counted.
+/// Separates a tangent error (large at every amplitude) from contact states switching
+/// (small at small amplitudes, large beyond them).
+#[test]
+#[ignore = "exploration: tangent consistency at the tension state"]
+fn probe_tangent_at_tension() {
+    let env = |k: &str, d: f64| {
+        std::env::var(k)
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(d)
+    };
+    let s = strand_1x19(1.0, false);
+    let mut test = BendingTest {
+        curvatures: Vec::new(),
+        ..BendingTest::frictionless(3, env("SPP", 8.0) as usize, env("T", 100.0), 0.0)
+    };
+    test.friction = env("MU", 100.0);
+    let (_, m, state) = test.run_with_state(&s).expect("tension step");
+    let n = 6 * m.segment_count();
+    let mut k = DMatrix::<f64>::zeros(n, n);
+    let parts: [(&str, Vec<strand_fine::tangent::ElementTangent>); 3] = [
+        ("joints", m.joint_tangents(&state)),
+        ("core contacts", m.contact_tangents(&state)),
+        ("links", m.link_tangents(&state)),
+    ];
+    for (_, p) in &parts {
+        for e in p {
+            e.add_to_dense(&mut k);
+        }
+    }
+    let flat = |st: &ModelState| -> (Vec<f64>, usize) {
+        let mut l = m.load_buffers();
+        m.compute_loads(st, 1.0, &mut l);
+        let closed = l
+            .iter()
+            .flat_map(|w| &w.contacts)
+            .filter(|c| c.state != strand_fine::ContactState::Open)
+            .count();
+        (
+            l.iter()
+                .flat_map(|w| {
+                    w.forces
+                        .iter()
+                        .zip(&w.torques)
+                        .flat_map(|(f, t)| [f.x, f.y, f.z, t.x, t.y, t.z])
+                        .collect::<Vec<_>>()
+                })
+                .collect(),
+            closed,
+        )
+    };
+    let (f0, c0) = flat(&state);
+    let v: Vec<f64> = (0..n)
+        .map(|i| {
+            let h = if i % 6 < 3 { 1.0 } else { 30.0 };
+            h * (0.7 * i as f64).sin()
+        })
+        .collect();
+    let kv = &k * DVector::from_vec(v.clone());
+    for a in [1e-12, 1e-11, 1e-10, 1e-9, 1e-8, 1e-7] {
+        let mut st = state.clone();
+        let mut g = 0;
+        for w in &mut st.wires {
+            for p in &mut w.poses {
+                for dof in 0..6 {
+                    strand_fine::joint::perturb(p, dof, a * v[6 * g + dof]);
+                }
+                g += 1;
+            }
+        }
+        let (f1, c1) = flat(&st);
+        let (mut worst, mut scale, mut at) = (0.0f64, 0.0f64, 0);
+        for i in 0..n {
+            let d = -(f1[i] - f0[i]);
+            let e = (a * kv[i] - d).abs();
+            if e > worst {
+                worst = e;
+                at = i;
+            }
+            scale = scale.max((a * kv[i]).abs());
+        }
+        println!(
+            "a {a:.0e}: largest |K a v| {scale:.3e}, largest error {worst:.3e} ({:.2e}) at \
+             dof {at} (segment {}), closed {c0} -> {c1}",
+            worst / scale,
+            at / 6
+        );
     }
 }
