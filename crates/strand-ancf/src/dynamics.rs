@@ -119,6 +119,24 @@ pub struct DynamicOptions {
     /// iterations and 55 matrices, against 1430 and 9 without rebuilds between steps
     /// (`f64::INFINITY`): 28 % less time.
     pub rebuild_rate: f64,
+    /// Generalized-alpha, a strand of several layers with a stick/slip law: keep a matrix
+    /// built at the last iterate whose correction still shrank by less than `refresh`,
+    /// rather than build one at every iterate of a slow tail (see the generalized-alpha
+    /// Newton). A 1+m strand and a linear law are not affected.
+    pub keep_slow_fresh: bool,
+    /// Generalized-alpha, a strand of several layers with a stick/slip law: the acceleration
+    /// a step is predicted with (a 1+m strand keeps the two steps' mean).
+    pub layers_predictor: SlipPredictor,
+}
+
+/// The acceleration at a step's end that generalized-alpha predicts the step with, for the
+/// stick/slip laws (see the step's predictor).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SlipPredictor {
+    /// The mean of the last two steps' accelerations, `(q''_n + q''_{n-1}) / 2`.
+    Mean,
+    /// Zero acceleration.
+    Zero,
 }
 
 impl DynamicOptions {
@@ -135,6 +153,8 @@ impl DynamicOptions {
             unloading: 0.25,
             refresh: 0.5,
             rebuild_rate: 0.02,
+            keep_slow_fresh: true,
+            layers_predictor: SlipPredictor::Zero,
         }
     }
 }
@@ -216,6 +236,13 @@ pub struct DynamicSummary {
     pub newton_iterations: usize,
     /// Iteration matrices built and factorized (generalized-alpha).
     pub factorizations: usize,
+    /// Why each iteration matrix was built, and the slow fresh matrices kept
+    /// (generalized-alpha).
+    pub rebuilds: Rebuilds,
+    /// Steps by their Newton iterations: `iteration_histogram[k]` steps took `k + 1`
+    /// (cut steps counted with the iterations of their halves; the last entry holds every
+    /// step of at least its count) (generalized-alpha).
+    pub iteration_histogram: [usize; 12],
     /// Steps of the scheme's step size that Newton could not take and that were taken in
     /// halves instead (generalized-alpha).
     pub cut_steps: usize,
@@ -235,6 +262,24 @@ pub struct DynamicSummary {
     pub v: Vec<f64>,
     /// Final committed per-point state (the law's slip state and the section frames).
     pub slip: Vec<f64>,
+}
+
+/// Why generalized-alpha built its iteration matrices (their sum is
+/// [`DynamicSummary::factorizations`]), and how often it kept a slow one.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Rebuilds {
+    /// At a step's start, for want of a matrix of the step's size: the first step, a step
+    /// cut in halves or the one after, or after a diverged or singular iteration.
+    pub step_size: usize,
+    /// At a step's start, because the last step's final contraction with the kept matrix
+    /// of a linear law was slower than `rebuild_rate`.
+    pub slow_step: usize,
+    /// Within a step, because a correction shrank by less than `refresh`.
+    pub slow_iteration: usize,
+    /// Within a step of a strand of several layers with a stick/slip law, the matrices
+    /// built at the last iterate whose correction still shrank by less than `refresh`, and
+    /// which were kept rather than built again (see the generalized-alpha Newton).
+    pub kept_slow_fresh: usize,
 }
 
 /// Why a dynamic run stopped.
@@ -629,6 +674,8 @@ fn verlet(
         steps: n_steps,
         newton_iterations: 0,
         factorizations: 1,
+        rebuilds: Rebuilds::default(),
+        iteration_histogram: [0; 12],
         cut_steps: 0,
         balance_error: ledger.balance_error,
         max_kinetic: ledger.max_kinetic,

@@ -7,8 +7,8 @@ mod convergence;
 mod newton;
 
 use super::{
-    DynamicError, DynamicOptions, DynamicSummary, Frame, Ledger, non_potential_work,
-    scatter_velocity, steps_for,
+    DynamicError, DynamicOptions, DynamicSummary, Frame, Ledger, Rebuilds, SlipPredictor,
+    non_potential_work, scatter_velocity, steps_for,
 };
 use crate::band::{BandMatrix, BandSolver};
 use crate::beam::{Beam, ElementKind, Evaluation, PointState, Tangent};
@@ -36,13 +36,17 @@ struct AlphaState {
 }
 
 impl AlphaState {
-    fn copy_from(&mut self, o: &AlphaState) {
+    /// Copies the motion of `o`, not its slip state: a step changes the slip state only when
+    /// it commits, so a step that fails leaves it as it was, and a state saved to restore
+    /// one ([`AlphaWork::saved`]) need not hold it (on the Cardinal span of the Performance
+    /// page, the slip state of 400 bending points of 60 wires made the copy 4 % of the run's
+    /// instructions).
+    fn copy_motion_from(&mut self, o: &AlphaState) {
         self.q.copy_from_slice(&o.q);
         self.vf.copy_from_slice(&o.vf);
         self.acc.copy_from_slice(&o.acc);
         self.alg.copy_from_slice(&o.alg);
         self.acc_last.copy_from_slice(&o.acc_last);
-        self.slip.copy_from_slice(&o.slip);
     }
 }
 
@@ -59,9 +63,12 @@ struct AlphaWork {
     factor_h: f64,
     /// Iteration matrices built and factorized.
     factorizations: usize,
+    /// Why they were built.
+    rebuilds: Rebuilds,
     /// Steps taken in halves because Newton failed at their size.
     cuts: usize,
-    /// States to restore when a step is cut, one per level of cutting.
+    /// Motions to restore when a step is cut, one per level of cutting (their slip states
+    /// empty: [`AlphaState::copy_motion_from`]).
     saved: Vec<AlphaState>,
     /// Turns the kept iteration matrix with the strand.
     rot: Corotation,
@@ -232,14 +239,14 @@ fn alpha_step(
 ) -> Result<StepOutcome, usize> {
     let p = Parameters::new(rho, h);
     let level = w.saved.len() - depth - 1;
-    w.saved[level].copy_from(st);
-    predict(beam, &p, t0, st, w);
+    w.saved[level].copy_motion_from(st);
+    predict(beam, opts, &p, t0, st, w);
     let limits = limits(beam, opts, &p, st, w);
     let (outcome, iterations) = newton::solve(beam, opts, &p, &limits, st, w, pts_new);
     match outcome {
         Some(ev) => Ok(commit(beam, &p, st, w, pts, pts_new, ev, iterations)),
         None if depth > 0 => {
-            st.copy_from(&w.saved[level]);
+            st.copy_motion_from(&w.saved[level]);
             w.cuts += 1;
             let a = alpha_step(beam, opts, rho, t0, 0.5 * h, depth - 1, st, w, pts, pts_new)?;
             let b = alpha_step(
@@ -266,7 +273,14 @@ fn alpha_step(
 }
 
 /// Moves `st` to the predicted end of the step that starts at `t0` (s).
-fn predict(beam: &Beam, p: &Parameters, t0: f64, st: &mut AlphaState, w: &mut AlphaWork) {
+fn predict(
+    beam: &Beam,
+    opts: &DynamicOptions,
+    p: &Parameters,
+    t0: f64,
+    st: &mut AlphaState,
+    w: &mut AlphaWork,
+) {
     let Parameters {
         am,
         af,
@@ -292,11 +306,24 @@ fn predict(beam: &Beam, p: &Parameters, t0: f64, st: &mut AlphaState, w: &mut Al
     // below) Newton iterations (matrices) with zero acceleration, constant acceleration and
     // the mean: continuous 5068 (421), 4643 (535), 4250 (474); hysteretic 4807 (612), 5263
     // (1102), 4209 (602).
+    //
+    // A strand of several layers predicts with zero acceleration (`layers_predictor`): its
+    // slipping layers give way at K_min, many times below K_max, so that wires starting or
+    // stopping to slip kick its fast modes harder, as on the chattering strand above. On the
+    // Cardinal span of the Performance page (with `keep_slow_fresh`), iterations (matrices)
+    // with the mean and with zero acceleration over 0.5 s: 3015 (693) and 2709 (459); over
+    // 2 s: 8359 (855) and 7568 (509); constant acceleration over 0.5 s: 3454 (813).
+    let zero =
+        !linear && beam.law().layer_count() > 1 && opts.layers_predictor == SlipPredictor::Zero;
     if linear {
         w.acc_pred.copy_from_slice(&st.acc);
     } else {
         for i in 0..nf {
-            w.acc_pred[i] = 0.5 * (st.acc[i] + st.acc_last[i]);
+            w.acc_pred[i] = if zero {
+                0.0
+            } else {
+                0.5 * (st.acc[i] + st.acc_last[i])
+            };
             // The algorithmic acceleration of a zero-acceleration prediction (below).
             w.alg_scale[i] = (af * st.acc[i] - am * st.alg[i]) / (1.0 - am);
         }
@@ -447,8 +474,14 @@ pub(super) fn generalized_alpha(
         solver: BandSolver::default(),
         factor_h: 0.0,
         factorizations: 0,
+        rebuilds: Rebuilds::default(),
         cuts: 0,
-        saved: (0..=MAX_CUTS).map(|_| new_state()).collect(),
+        saved: (0..=MAX_CUTS)
+            .map(|_| AlphaState {
+                slip: Vec::new(),
+                ..new_state()
+            })
+            .collect(),
         rot: Corotation::new(beam, beam.reference()),
         stale: false,
         acc_pred: zeros.clone(),
@@ -519,6 +552,7 @@ pub(super) fn generalized_alpha(
         slip: &st.slip,
     });
     let mut newton_iterations = 0;
+    let mut iteration_histogram = [0; 12];
     let mut output = OutputTimes::new(opts.output_interval, h);
     for step in 1..=n_steps {
         let t = step as f64 * h;
@@ -542,6 +576,7 @@ pub(super) fn generalized_alpha(
             law: beam.law().kind().name(),
         })?;
         newton_iterations += out.iterations;
+        iteration_histogram[(out.iterations.max(1) - 1).min(11)] += 1;
         ledger.dissipated += out.slip_work;
         ledger.non_potential += out.non_potential;
         drive.end_step(beam, &st.q, &st.vf, &w.force);
@@ -566,6 +601,8 @@ pub(super) fn generalized_alpha(
         steps: n_steps,
         newton_iterations,
         factorizations: w.factorizations,
+        rebuilds: w.rebuilds,
+        iteration_histogram,
         cut_steps: w.cuts,
         balance_error: ledger.balance_error,
         max_kinetic: ledger.max_kinetic,
