@@ -95,7 +95,7 @@ proptest::proptest! {
         deg in 2.0f64..40.0,
         share in 0.0f64..1.0,
         nu in 0.0f64..0.45,
-        wire_mm in 0.5f64..1.5,
+        wire_mm in 0.5f64..1.2,
     ) {
         let s = one_layer(deg, wire_mm * 1e-3, nu);
         let end = SofteningTable::new(&s.layers()[0]).end_strain();
