@@ -26,7 +26,7 @@ pub use geometry::{
     LayerSpec, Material, Strand, StrandSpec, TraditionalBeam, WireSpec,
 };
 pub use section::{
-    LawKind, PlanarMoment, PlanarResponse, PressureSystem, SectionLaw, SectionOptions,
+    BaseTension, LawKind, PlanarMoment, PlanarResponse, PressureSystem, SectionLaw, SectionOptions,
     SectionResponse, SlipLimit, SlipPressure, Station, WireReport, WireState,
 };
 pub use stretched_bending::stretched_min_bending_stiffness;

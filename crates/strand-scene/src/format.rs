@@ -95,6 +95,11 @@ pub struct SectionFile {
     /// law under every choice.
     #[serde(default)]
     pub slip_pressure: Option<String>,
+    /// Whether K_min follows the axial strain: `fixed` (default; the tension-free value) or
+    /// `thin_rod` (each layer's share scaled by the thin-rod stiffness of the stretched helix,
+    /// `strand_core::section::base_tension`).
+    #[serde(default)]
+    pub base_tension: Option<String>,
 }
 
 /// A core wire.

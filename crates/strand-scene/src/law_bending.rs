@@ -45,9 +45,10 @@ pub struct LawBendingSummary {
     pub tension: f64,
     /// Strain T / EA_eq (-).
     pub strain: f64,
-    /// All-slip stiffness K_min (N m^2).
+    /// All-slip stiffness K_min at the strain (N m^2): the tension-free value unless
+    /// `section.base_tension` makes it follow the strain.
     pub k_min: f64,
-    /// All-stick stiffness K_max (N m^2).
+    /// All-stick stiffness K_max at the strain (N m^2): K_min plus the wires' stick stiffness.
     pub k_max: f64,
     /// The loop's largest curvature (1/m).
     pub amplitude: f64,
@@ -137,14 +138,16 @@ pub fn run_law_bending(
         csv.row(r).map_err(io_err(&csv_path))?;
     }
     csv.finish().map_err(io_err(&csv_path))?;
+    // K_min at the held strain (`section.base_tension`; the tension-free value by default).
+    let k_min = law.base_bending_at(eps).0;
     let summary = LawBendingSummary {
         scene: scene.name.clone(),
         law: scene.law.to_string(),
         layers: strand.layers().len(),
         tension: opts.tension,
         strain: eps,
-        k_min: law.base_bending_stiffness(),
-        k_max: law.stick_bending_stiffness(),
+        k_min,
+        k_max: law.stick_bending_stiffness() + (k_min - law.base_bending_stiffness()),
         amplitude,
         dissipated,
         loop_area,

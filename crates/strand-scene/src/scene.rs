@@ -10,9 +10,9 @@ use strand_ancf::beam::{
     ElementKind, MAX_BENDING_POINTS, pitch_rule_points, points_per_quarter_pitch,
 };
 use strand_core::{
-    BaseStiffness, DEFAULT_FRICTION, InputError, LawKind, LayDirection, LayerSpec, Material,
-    SectionLaw, SectionOptions, SlipLimit, SlipPressure, StickStiffness, Strand, StrandSpec,
-    WireSpec,
+    BaseStiffness, BaseTension, DEFAULT_FRICTION, InputError, LawKind, LayDirection, LayerSpec,
+    Material, SectionLaw, SectionOptions, SlipLimit, SlipPressure, StickStiffness, Strand,
+    StrandSpec, WireSpec,
 };
 
 use nalgebra::Vector3;
@@ -698,6 +698,18 @@ fn section(file: Option<&SectionFile>) -> Result<SectionOptions, SceneError> {
                 "section.slip_pressure",
                 format!(
                     "unknown slip pressure `{name}`: expected {}",
+                    names.join(", ")
+                ),
+            )
+        })?;
+    }
+    if let Some(name) = file.base_tension.as_deref() {
+        options.base_tension = BaseTension::from_name(name).ok_or_else(|| {
+            let names: Vec<&str> = BaseTension::ALL.iter().map(|b| b.name()).collect();
+            SceneError::new(
+                "section.base_tension",
+                format!(
+                    "unknown base tension `{name}`: expected {}",
                     names.join(", ")
                 ),
             )

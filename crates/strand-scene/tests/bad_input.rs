@@ -627,3 +627,25 @@ fn traditional_stiffness_fields() {
         scene.strand.traditional().axial_stiffness
     );
 }
+
+/// `section.base_tension` reads `fixed` and `thin_rod` (the default `fixed`) and refuses any
+/// other name with its path.
+#[test]
+fn base_tension_names() {
+    use strand_core::BaseTension;
+    let default = Scene::parse(&good().to_string()).unwrap();
+    assert_eq!(default.section.base_tension, BaseTension::Fixed);
+    for b in BaseTension::ALL {
+        let mut s = good();
+        s["section"]["base_tension"] = json!(b.name());
+        assert_eq!(
+            Scene::parse(&s.to_string()).unwrap().section.base_tension,
+            b
+        );
+    }
+    let mut s = good();
+    s["section"]["base_tension"] = json!("stretched");
+    let e = Scene::parse(&s.to_string()).unwrap_err();
+    assert_path(&e, "section.base_tension");
+    assert!(e.message.contains("fixed, thin_rod"), "{e}");
+}

@@ -64,6 +64,7 @@
 //! last reversal) has no unique reversal in two dimensions: a rotating curvature reverses at
 //! every step by the test `(kappa - kappa_c) . (kappa_c - kappa_r) < 0`.
 
+pub mod base_tension;
 mod direction;
 mod kernels;
 mod layer_law;
@@ -75,6 +76,8 @@ mod response;
 mod slider;
 mod slip_limit;
 
+pub use base_tension::BaseTension;
+use base_tension::SofteningTable;
 use direction::{BendingDirection, DIRECTION_STATE};
 use kernels::{LayerTally, PlanarWires, continuous_wires, hysteretic_wires};
 use layer_law::{LayerLaw, still_per_scale};
@@ -133,6 +136,8 @@ pub struct SectionLaw {
     kind: LawKind,
     axial_stiffness: f64,
     base_bending: f64,
+    /// K_min's strain dependence (`section.base_tension`); `None`: K_min is `base_bending`.
+    softening: Option<Softening>,
     /// The layers' constants, from the core outward (none for `constant` and plain wires).
     layers: Vec<LayerLaw>,
     /// The accumulated-pressure system of the friction limits (`section.slip_pressure`);
@@ -147,6 +152,47 @@ pub struct SectionLaw {
     layer_states: bool,
     strand: Strand,
     options: SectionOptions,
+}
+
+/// K_min as a function of the strain (module `base_tension`): the core's part and each
+/// layer's share with its tabulated ratio.
+#[derive(Debug, Clone, PartialEq)]
+struct Softening {
+    /// The core's E_c I_c (N m^2).
+    core: f64,
+    /// Each layer's tension-free share of K_min (N m^2) and its ratio `s(eps)`.
+    layers: Vec<(f64, SofteningTable)>,
+}
+
+impl Softening {
+    fn new(strand: &Strand, options: &SectionOptions) -> Softening {
+        let core = strand.core();
+        Softening {
+            core: core.material.youngs_modulus * core.inertia(),
+            layers: strand
+                .layers()
+                .iter()
+                .map(|l| {
+                    (
+                        strand.layer_min_bending(l, options.base_stiffness),
+                        SofteningTable::new(l),
+                    )
+                })
+                .collect(),
+        }
+    }
+
+    /// K_min (N m^2) and dK_min/deps (N m^2) at the strain `eps`, summed as
+    /// `Strand::min_bending_stiffness` sums it (the same bits where every ratio is 1).
+    #[inline]
+    fn at(&self, eps: f64) -> (f64, f64) {
+        self.layers
+            .iter()
+            .fold((self.core, 0.0), |(k, dk), (kj, table)| {
+                let (s, ds) = table.ratio(eps);
+                (k + kj * s, dk + kj * ds)
+            })
+    }
 }
 
 /// One wire at one station: its phase and the quantities that depend only on it.
@@ -254,10 +300,16 @@ impl SectionLaw {
                 })
                 .collect(),
         };
+        let softening = match (kind, options.base_tension) {
+            (LawKind::Constant, _) | (_, BaseTension::Fixed) => None,
+            _ if strand.layers().is_empty() => None,
+            _ => Some(Softening::new(strand, options)),
+        };
         SectionLaw {
             kind,
             axial_stiffness,
             base_bending,
+            softening,
             sliders: layers.iter().map(|l: &LayerLaw| l.wires).sum(),
             layer_states: kind == LawKind::Hysteretic && layers.len() > 1,
             layers,
@@ -287,6 +339,7 @@ impl SectionLaw {
             kind: LawKind::Constant,
             axial_stiffness,
             base_bending: bending_stiffness,
+            softening: None,
             layers: Vec::new(),
             pressure: None,
             sliders: 0,
@@ -312,9 +365,19 @@ impl SectionLaw {
     pub fn axial_stiffness(&self) -> f64 {
         self.axial_stiffness
     }
-    /// Bending stiffness with every wire slipping: K_min, or EI for `constant` (N m^2).
+    /// Bending stiffness with every wire slipping: K_min, or EI for `constant` (N m^2); at
+    /// zero strain where K_min follows the strain ([`Self::base_bending_at`]).
     pub fn base_bending_stiffness(&self) -> f64 {
         self.base_bending
+    }
+    /// K_min (N m^2) and dK_min/deps (N m^2) at the strain `eps`: [`Self::base_bending_stiffness`]
+    /// and 0 unless `section.base_tension` makes it follow the strain (module `base_tension`;
+    /// the moment is `K_min(eps) kappa` with kappa per unit rest length).
+    pub fn base_bending_at(&self, eps: f64) -> (f64, f64) {
+        match &self.softening {
+            None => (self.base_bending, 0.0),
+            Some(s) => s.at(eps),
+        }
     }
     /// Bending stiffness with every wire sticking: K_min plus the layers' stick stiffness
     /// ([`Self::layer_stick_stiffness`]); EI for `constant` (N m^2).
@@ -492,8 +555,25 @@ impl SectionLaw {
     /// The part of [`Self::planar`] without the wires, `N = EA eps` and `M = K kappa` with the
     /// base bending stiffness: all of it for a linear law ([`Self::is_linear`]), which element
     /// loops can then evaluate inline.
+    /// Where K_min follows the strain (`section.base_tension`) the moment is `K_min(eps)
+    /// kappa`, with `dM/deps = K_min'(eps) kappa`; the axial force stays `EA eps`, so the
+    /// energy's `K_min'(eps) kappa^2 / 2` is booked in `energy_strain`.
     #[inline(always)]
     pub fn planar_linear(&self, eps: f64, kappa: f64) -> PlanarResponse {
+        if let Some(s) = &self.softening {
+            let (kb, dkb) = s.at(eps);
+            return PlanarResponse {
+                axial_force: self.axial_stiffness * eps,
+                axial_stiffness: self.axial_stiffness,
+                moment: kb * kappa,
+                moment_curvature: kb,
+                moment_strain: dkb * kappa,
+                energy: 0.5 * self.axial_stiffness * eps * eps + 0.5 * kb * kappa * kappa,
+                energy_strain: 0.5 * dkb * kappa * kappa,
+                slip_work: 0.0,
+                slipping: 0,
+            };
+        }
         PlanarResponse {
             axial_force: self.axial_stiffness * eps,
             axial_stiffness: self.axial_stiffness,
@@ -735,18 +815,26 @@ impl SectionLaw {
         slip: &[f64],
         trial: &mut [f64],
     ) -> SectionResponse {
-        let kb = self.base_bending;
+        let (kb, dkb) = self.base_bending_at(eps);
         let mut r = SectionResponse {
             axial_force: self.axial_stiffness * eps,
             axial_stiffness: self.axial_stiffness,
             moment: [kb * kappa[0], kb * kappa[1]],
             moment_curvature: [[kb, 0.0], [0.0, kb]],
-            moment_strain: [0.0; 2],
+            moment_strain: if self.softening.is_some() {
+                [dkb * kappa[0], dkb * kappa[1]]
+            } else {
+                [0.0; 2]
+            },
             // Summed as in `planar_linear`, the out-of-plane term last.
             energy: 0.5 * self.axial_stiffness * eps * eps
                 + 0.5 * kb * kappa[1] * kappa[1]
                 + 0.5 * kb * kappa[0] * kappa[0],
-            energy_strain: 0.0,
+            energy_strain: if self.softening.is_some() {
+                0.5 * dkb * (kappa[1] * kappa[1] + kappa[0] * kappa[0])
+            } else {
+                0.0
+            },
             energy_turn: [0.0; 2],
             slip_work: 0.0,
             slipping: 0,

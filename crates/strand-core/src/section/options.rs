@@ -1,6 +1,6 @@
 //! Choices a scene makes about the section law beyond its kind (the scene's `section` object).
 
-use super::{SlipLimit, SlipPressure};
+use super::{BaseTension, SlipLimit, SlipPressure};
 use crate::bonded::StickStiffness;
 use crate::wire_bending::BaseStiffness;
 
@@ -22,6 +22,9 @@ pub struct SectionOptions {
     /// default the accumulated pressure of the layers outside, module `pressure`). A strand
     /// of one layer has the same law under every choice.
     pub slip_pressure: SlipPressure,
+    /// Whether K_min follows the axial strain (`section.base_tension`; default `fixed`, the
+    /// tension-free value; module `base_tension`).
+    pub base_tension: BaseTension,
 }
 
 impl SectionOptions {
@@ -34,6 +37,7 @@ impl SectionOptions {
             stick_stiffness: StickStiffness::PlaneSection,
             slip_limit: SlipLimit::Paper,
             slip_pressure: SlipPressure::OwnLayer,
+            base_tension: BaseTension::Fixed,
         }
     }
 }
