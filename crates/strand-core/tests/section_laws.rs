@@ -910,9 +910,10 @@ fn non_potential_work_closes_the_energy_balance_in_3d() {
             let stored = prev.energy - start;
             let scale = prev.energy.abs().max(start);
             let err = (work - (stored + slip_work - non_potential - turn)).abs();
-            // The paper law's moment jumps at each switch, and the hysteretic return mapping
-            // books the slip of a step at its end: against the trapezoidal work both err at
-            // first order in the step at every switch.
+            // The paper law's moment jumps at each switch: against the trapezoidal work it errs
+            // at first order in the step at every switch. The hysteretic law books the
+            // trapezoid of its moving limits, second order (the order is held by
+            // tests/slip_work.rs); its limit here is the paper law's.
             // Papailiou's limit is continuous but has a kink at the extreme fibre (theta_n =
             // min(theta, pi - theta)): there `energy_turn` of a slipping wire changes sign, and
             // the trapezoid errs at first order in the step at each such crossing (measured

@@ -26,7 +26,9 @@ use crate::pareto::metrics::Tip;
 use checks::BeamKind;
 use machine::Provenance;
 use report::{Report, Row};
-use tolerances::{CheckSpec, ConvergenceTol, EquivalentVariant, TimeStepTol, Tolerances};
+use tolerances::{
+    CheckSpec, ConvergenceTol, EnergyTol, EquivalentVariant, TimeStepTol, Tolerances,
+};
 
 /// Options of `cargo xtask validate`.
 #[derive(Debug, Clone, Default, clap::Args)]
@@ -424,13 +426,17 @@ impl SceneRun<'_> {
                     ));
                 }
                 for s in dynamic {
-                    rows.push(checks::energy_balance(
+                    let row = checks::energy_balance(
                         &name,
                         &s.model,
                         &self.out.join(&s.model),
                         s.energy_balance_relative,
                         t,
-                    ));
+                    );
+                    let half = (t.refined == Some(true) && s.model == "equivalent")
+                        .then(|| self.balance_at_half_step(&row, t));
+                    rows.push(row);
+                    rows.extend(half);
                 }
             }
             CheckSpec::ConvergenceOrder(t) => rows.extend(self.convergence(t)),
@@ -650,6 +656,39 @@ impl SceneRun<'_> {
                 checks::observed_order(errors[0].max, errors[1].max)
             )),
         ]
+    }
+
+    /// The equivalent model's energy balance at half the scene's time step against its
+    /// balance at the scene's step, `at_h` (`EnergyTol::refined`): no growth.
+    fn balance_at_half_step(&self, at_h: &Row, t: &EnergyTol) -> Row {
+        const CHECK: &str = "energy-balance";
+        let name = self.scene.name.clone();
+        let metric = "equivalent at h/2";
+        let Some(h) = self.scene.file.analysis.time_step else {
+            return Row::failed(&name, CHECK, metric, "the scene sets no time step to halve");
+        };
+        let Some(limit) = at_h.value else {
+            return Row::failed(&name, CHECK, metric, "no balance at the scene's step");
+        };
+        let dir = self.out.join("energy-balance").join("half-step");
+        let label = format!("{name} balance at time step {:e} s", 0.5 * h);
+        let edit = |f: &mut SceneFile| f.analysis.time_step = Some(0.5 * h);
+        let summaries = match self.run_equivalent_variant(edit, &dir, &label) {
+            Ok(s) => s,
+            Err(e) => return Row::failed(&name, CHECK, metric, format!("{e:#}")),
+        };
+        let every_step = summaries.first().and_then(|s| s.energy_balance_relative);
+        let half =
+            checks::energy_balance(&name, "equivalent", &dir.join("equivalent"), every_step, t);
+        match half.value {
+            Some(v) => Row::measured(&name, CHECK, metric, v, "", report::Bound::AtMost(limit))
+                .with_note(format!(
+                    "time step {:e} s: at most the balance at the scene's step {h:e} s, {limit:.3e} \
+                     (no growth under refinement)",
+                    0.5 * h
+                )),
+            None => Row::failed(&name, CHECK, metric, "no balance at h/2"),
+        }
     }
 
     /// Dynamics of the equivalent model with time steps h, h/2, h/4: the observed order of

@@ -145,6 +145,11 @@ pub struct EnergyTol {
     /// under refinement): their rows are reported as open, neither pass nor fail.
     #[serde(default)]
     pub open: Option<OpenClaim>,
+    /// Also run the equivalent model at half the scene's time step: its balance there must
+    /// not exceed its balance at the scene's step (a balance that holds under refinement
+    /// shows no growth), a row of its own.
+    #[serde(default)]
+    pub refined: Option<bool>,
     /// Why this limit.
     pub why: String,
     /// Run this check in `--quick`.

@@ -3,8 +3,8 @@
 //! Every bending point holds, in one vector over the beam ([`Beam::state_len`] values, point
 //! after point):
 //! * the section law's state ([`strand_core::SectionLaw::state_len`]: for the hysteretic law
-//!   the slip of each wire and the stored bending direction of the friction limits, none
-//!   otherwise);
+//!   the slip of each wire, the stored bending direction of the friction limits and the
+//!   committed strain, and for several layers their closed-form states; none otherwise);
 //! * for the spatial element, the point's reference section frame `(t0, e_z0)`
 //!   ([`SectionFrame::STATE_LEN`] values): the section turns without spin about the tangent
 //!   (see [`crate::spatial`]), so the frame carried to the accepted tangent is the next step's

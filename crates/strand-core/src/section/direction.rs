@@ -9,6 +9,7 @@ pub(super) const DIRECTION_STATE: usize = 2;
 /// The bending direction of a curvature vector as the section law reads it: the angle `beta`
 /// of the reference half `b` of the neutral axis (module docs), measured from z toward y as
 /// the wire phases are, and d beta / d kappa (m).
+#[derive(Debug, Clone, Copy)]
 pub(super) struct BendingDirection {
     pub beta: f64,
     pub dbeta: [f64; 2],
@@ -33,6 +34,17 @@ impl BendingDirection {
         }
     }
 
+    /// The stored direction `tail` ([`DIRECTION_STATE`] values), without derivative; `None`
+    /// where none is stored.
+    #[inline(always)]
+    pub fn stored(tail: &[f64]) -> Option<Self> {
+        let stored = [tail[0], tail[1]];
+        (stored != [0.0; 2]).then(|| BendingDirection {
+            beta: stored[0].atan2(stored[1]),
+            dbeta: [0.0; 2],
+        })
+    }
+
     /// The direction the hysteretic law reads at curvature `kappa` with the stored direction
     /// `tail` ([`DIRECTION_STATE`] values): `kappa`'s own beyond the still curvature `still`
     /// (1/m), else the stored one (`kappa`'s own if none is stored yet); writes the trial
@@ -42,11 +54,7 @@ impl BendingDirection {
         let stored = [tail[0], tail[1]];
         let (dir, axis) = if kappa[0].hypot(kappa[1]) > still {
             (Self::of(kappa), neutral_axis(kappa))
-        } else if stored != [0.0; 2] {
-            let dir = BendingDirection {
-                beta: stored[0].atan2(stored[1]),
-                dbeta: [0.0; 2],
-            };
+        } else if let Some(dir) = Self::stored(&stored) {
             (dir, stored)
         } else {
             (Self::of(kappa), stored)

@@ -3,6 +3,7 @@
 
 use super::PlanarResponse;
 use super::layer_law::LayerLaw;
+use super::slip_work::trapezoid;
 
 /// The planar law's per-wire constants of a station, as parallel arrays.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -72,29 +73,27 @@ pub(super) fn continuous_wires<const BOOKS: bool>(
 }
 
 /// [`planar_hysteretic`] with the free-wire test chosen as in [`continuous_wires`]; `TALLY`
-/// (with `BOOKS`): sum the layer's closed-form data into `tally`.
+/// (with `BOOKS`): sum the layer's closed-form data into `tally`. The scales are the
+/// friction-limit scale at the strain, its strain derivative and the scale at the committed
+/// strain (the slip work's trapezoid, module `slip_work`; read with `BOOKS` only).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(super) fn hysteretic_wires<const BOOKS: bool, const TALLY: bool>(
     law: &LayerLaw,
     p: &PlanarWires,
     kappa: f64,
-    scale: f64,
-    dscale: f64,
+    (scale, dscale, scale_old): (f64, f64, f64),
     slip: &[f64],
     trial: &mut [f64],
     r: &mut PlanarResponse,
     tally: &mut LayerTally,
 ) {
     let (k, ik) = (law.k, law.inv_k);
+    let scales = (scale, dscale, scale_old);
     if scale * p.gain_min > 0.0 {
-        planar_hysteretic::<false, BOOKS, TALLY>(
-            k, ik, p, kappa, scale, dscale, slip, trial, r, tally,
-        );
+        planar_hysteretic::<false, BOOKS, TALLY>(k, ik, p, kappa, scales, slip, trial, r, tally);
     } else {
-        planar_hysteretic::<true, BOOKS, TALLY>(
-            k, ik, p, kappa, scale, dscale, slip, trial, r, tally,
-        );
+        planar_hysteretic::<true, BOOKS, TALLY>(k, ik, p, kappa, scales, slip, trial, r, tally);
     }
 }
 
@@ -163,8 +162,7 @@ fn planar_hysteretic<const FREE: bool, const BOOKS: bool, const TALLY: bool>(
     inv_k: f64,
     w: &PlanarWires,
     kappa: f64,
-    scale: f64,
-    dscale: f64,
+    (scale, dscale, scale_old): (f64, f64, f64),
     slip: &[f64],
     trial: &mut [f64],
     r: &mut PlanarResponse,
@@ -204,7 +202,7 @@ fn planar_hysteretic<const FREE: bool, const BOOKS: bool, const TALLY: bool>(
         }
         // Return mapping: the slip puts the wire on its friction limit. The stored energy is
         // 1/2 F^2 / k; the slip work books the energy change of a moving limit (no
-        // energy_strain term).
+        // energy_strain term), by the trapezoid of the limit over the step.
         let (cap, gain, force) = if pos {
             (cap_pos, gp[i], cap_pos)
         } else {
@@ -212,11 +210,12 @@ fn planar_hysteretic<const FREE: bool, const BOOKS: bool, const TALLY: bool>(
         };
         r.moment += force * lever;
         if BOOKS {
+            let cap_old = scale_old * if pos { gp[i] } else { gn[i] };
             let s = e - force * inv_k;
             trial[i] = s;
             r.moment_strain += gain * dscale * lever;
             r.energy += 0.5 * cap * cap * inv_k;
-            r.slip_work += cap * (s - committed).abs();
+            r.slip_work += trapezoid(cap, cap_old, s - committed);
             r.slipping += 1;
         }
         if TALLY {

@@ -126,7 +126,7 @@ mod tests {
         let full = law.planar(st, eps, kappa, slip, &mut scratch);
         let n = law.sliders();
         let (mut magnitude, mut first, mut hits) = (law.base_bending * kappa.abs(), 0, [0; 2]);
-        let states = slip[n + crate::section::DIRECTION_STATE..].chunks_exact(LAYER_STATE);
+        let states = slip[n + crate::section::STATION_TAIL..].chunks_exact(LAYER_STATE);
         for ((l, p), s) in law.layers.iter().zip(&st.planar).zip(states) {
             let scale = l.cap_scale(eps).0;
             for (i, lever) in p.lever.iter().enumerate() {

@@ -75,6 +75,7 @@ mod report;
 mod response;
 mod slider;
 mod slip_limit;
+mod slip_work;
 
 pub use base_tension::BaseTension;
 use base_tension::SofteningTable;
@@ -88,6 +89,11 @@ pub use response::{PlanarMoment, PlanarResponse, SectionResponse, WireReport};
 pub use slider::WireState;
 use slider::{SliderForce, slider};
 pub use slip_limit::SlipLimit;
+use slip_work::STRAIN_STATE;
+
+/// State values per station between the wires' slips and the layers' closed-form states: the
+/// stored bending direction, then the committed strain.
+const STATION_TAIL: usize = DIRECTION_STATE + STRAIN_STATE;
 
 use crate::error::InputError;
 use crate::geometry::Strand;
@@ -463,16 +469,28 @@ impl SectionLaw {
     }
     /// Length of the state slice a station needs: for the hysteretic law the slip strain of
     /// each wire, then the stored bending direction of the friction limits (the unit vector
-    /// (y, z) of the neutral axis's reference half, (0, 0) before any; module docs), then for
-    /// a strand of several layers each layer's closed-form state (module `layer_state`,
+    /// (y, z) of the neutral axis's reference half, (0, 0) before any; module docs), then the
+    /// committed axial strain (the slip work's trapezoid, module `slip_work`), then for a
+    /// strand of several layers each layer's closed-form state (module `layer_state`,
     /// written by [`Self::planar`] at the accepted iterate; zeros: none); 0 for the other laws
     /// and for a strand without wires. Zeros are the straight, unslipped state.
     #[inline]
     pub fn state_len(&self) -> usize {
         if self.kind.has_state() && self.sliders() > 0 {
-            self.sliders() + DIRECTION_STATE + self.layer_state_len()
+            self.sliders() + STATION_TAIL + self.layer_state_len()
         } else {
             0
+        }
+    }
+    /// The committed axial strain in a station's state `slip` of `n` wires: the strain of the
+    /// step's start, at which the slip work's trapezoid takes the friction limits (module
+    /// `slip_work`); `eps` itself (the limit of the step's end) for a state without it.
+    #[inline(always)]
+    fn committed_strain(&self, n: usize, slip: &[f64], eps: f64) -> f64 {
+        if slip.len() == self.state_len() && slip.len() > n {
+            slip[n + DIRECTION_STATE]
+        } else {
+            eps
         }
     }
     /// The layers' closed-form state values at the end of a station's state (0 for a 1+m
@@ -616,30 +634,32 @@ impl SectionLaw {
             (LawKind::Hysteretic, layers, planar) if stateful => {
                 // Each layer's wires, one after another in the state; then, where the state
                 // holds them, each layer's closed-form state for the next step's iterations.
+                let eps_old = self.committed_strain(n, slip, eps);
                 let (wires, tail) = trial.split_at_mut(n);
                 let tally = self.layer_states && slip.len() == self.state_len();
                 let mut states = if tally {
-                    tail[DIRECTION_STATE..].chunks_exact_mut(LAYER_STATE)
+                    tail[STATION_TAIL..].chunks_exact_mut(LAYER_STATE)
                 } else {
                     [].chunks_exact_mut(LAYER_STATE)
                 };
                 let (mut sl, mut tr) = (&slip[..n], wires);
                 for (law, p) in layers.iter().zip(planar) {
                     let (scale, dscale) = law.cap_scale(eps);
+                    let scales = (scale, dscale, law.cap_scale(eps_old).0);
                     let m = p.lever.len();
                     let (s_here, s_rest) = sl.split_at(m);
                     let (t_here, t_rest) = tr.split_at_mut(m);
                     let mut t = LayerTally::default();
                     if tally {
                         hysteretic_wires::<true, true>(
-                            law, p, kappa, scale, dscale, s_here, t_here, &mut r, &mut t,
+                            law, p, kappa, scales, s_here, t_here, &mut r, &mut t,
                         );
                         if let Some(out) = states.next() {
                             layer_state::commit(law, p, kappa, scale, &t, out);
                         }
                     } else {
                         hysteretic_wires::<true, false>(
-                            law, p, kappa, scale, dscale, s_here, t_here, &mut r, &mut t,
+                            law, p, kappa, scales, s_here, t_here, &mut r, &mut t,
                         );
                     }
                     (sl, tr) = (s_rest, t_rest);
@@ -656,7 +676,8 @@ impl SectionLaw {
         }
         // The stored bending direction (hysteretic law), as `vector` writes it with kappa_y = 0
         // (`BendingDirection::select` without its angles): beyond the still curvature the
-        // neutral axis of (0, kappa), (+-0, 1), else the stored one.
+        // neutral axis of (0, kappa), (+-0, 1), else the stored one; then the strain, the
+        // next step's committed strain.
         if slip.len() == self.state_len() && slip.len() > n && trial.len() == slip.len() {
             let tail = if kappa.abs() > self.still(eps) {
                 [if kappa < 0.0 { -0.0 } else { 0.0 }, 1.0]
@@ -664,6 +685,7 @@ impl SectionLaw {
                 [slip[n], slip[n + 1]]
             };
             trial[n..n + DIRECTION_STATE].copy_from_slice(&tail);
+            trial[n + DIRECTION_STATE] = eps;
         }
         r
     }
@@ -707,8 +729,7 @@ impl SectionLaw {
                     law,
                     p,
                     kappa,
-                    scale,
-                    dscale,
+                    (scale, dscale, scale),
                     sl,
                     &mut [],
                     &mut r,
@@ -725,7 +746,7 @@ impl SectionLaw {
                 let mut sl = &slip[..n];
                 // Each layer's closed-form state, where the state holds them.
                 let states = if self.layer_states && slip.len() == self.state_len() {
-                    &slip[n + DIRECTION_STATE..]
+                    &slip[n + STATION_TAIL..]
                 } else {
                     &[]
                 };
@@ -747,8 +768,7 @@ impl SectionLaw {
                         law,
                         p,
                         kappa,
-                        scale,
-                        dscale,
+                        (scale, dscale, scale),
                         here,
                         &mut [],
                         &mut r,
@@ -779,11 +799,14 @@ impl SectionLaw {
         trial: &mut [f64],
         r: &mut PlanarResponse,
     ) {
+        let eps_old = self.committed_strain(st.wires.len(), slip, eps);
         for (i, w) in st.wires.iter().enumerate() {
             let law = self.layers[w.layer];
             let (scale, dscale) = law.cap_scale(eps);
             let lever = w.lever[1];
-            let f = self.slide(law, i, lever * kappa, scale, w.gains, slip, trial);
+            let gains = w.gains;
+            let old = |pos: bool| law.cap_scale(eps_old).0 * gains[usize::from(!pos)];
+            let f = self.slide(law, i, lever * kappa, scale, gains, slip, trial, old);
             r.moment += f.force * lever;
             r.moment_curvature += f.d_strain * lever * lever;
             let cap_strain = (f.d_cap_pos * w.gains[0] - f.d_cap_neg * w.gains[1]) * dscale;
@@ -844,25 +867,37 @@ impl SectionLaw {
         }
         let n = st.wires.len();
         let still = self.still(eps);
-        let dir = if slip.len() == self.state_len() && slip.len() > n && trial.len() == slip.len() {
+        let full = slip.len() == self.state_len() && slip.len() > n;
+        let dir = if full && trial.len() == slip.len() {
             // No closed-form layer states in 3D: the next planar evaluation visits the wires.
-            trial[n + DIRECTION_STATE..].fill(0.0);
+            trial[n + STATION_TAIL..].fill(0.0);
+            trial[n + DIRECTION_STATE] = eps;
             BendingDirection::select(kappa, still, &slip[n..], Some(&mut trial[n..]))
         } else {
             BendingDirection::of(kappa)
+        };
+        // The step's start: the committed strain and the committed bending direction (the
+        // present one where none is stored: no wire has slipped yet), for the slip work's
+        // trapezoid (module `slip_work`).
+        let eps_old = self.committed_strain(n, slip, eps);
+        let dir_old = if full {
+            BendingDirection::stored(&slip[n..]).unwrap_or(dir)
+        } else {
+            dir
         };
         for (i, w) in st.wires.iter().enumerate() {
             let law = self.layers[w.layer];
             let (scale, dscale) = law.cap_scale(eps);
             let l = w.lever;
             let theta = dir.wire_angle(w.phase);
-            let (gains, dtheta_n, slopes) = if law.accumulated {
-                let (t, dt) = law.slip_limit.angle(theta.abs());
-                let (g, d) = self.capstan_gains(&law, t);
-                (g, dt, Some(d))
-            } else {
-                let (g, dt) = law.gains(theta.abs());
-                (g, dt, None)
+            let (gains, dtheta_n, slopes) = self.turning_gains(&law, theta);
+            let old = |pos: bool| {
+                let g = if dir_old.beta == dir.beta {
+                    gains
+                } else {
+                    self.turning_gains(&law, dir_old.wire_angle(w.phase)).0
+                };
+                law.cap_scale(eps_old).0 * g[usize::from(!pos)]
             };
             let f = self.slide(
                 law,
@@ -872,6 +907,7 @@ impl SectionLaw {
                 gains,
                 slip,
                 trial,
+                old,
             );
             // The friction limit of the active side turns with the bending direction:
             // d cap/d theta through the slip limit's angle theta_n(theta) (non-zero only while
@@ -914,6 +950,24 @@ impl SectionLaw {
         r
     }
 
+    /// The gains (stretched, shortened) of layer `law` for a wire at the signed angle `theta`
+    /// (rad) from the reference half of the neutral axis, d theta_n / d theta of the slip
+    /// limit's angle, and the accumulated pressure's gain slopes d gain / d theta_n where the
+    /// layer has it (the capstan gains' slopes follow from the gains).
+    #[inline(always)]
+    fn turning_gains(&self, law: &LayerLaw, theta: f64) -> ([f64; 2], f64, Option<[f64; 2]>) {
+        if law.accumulated {
+            let (t, dt) = law.slip_limit.angle(theta.abs());
+            let (g, d) = self.capstan_gains(law, t);
+            (g, dt, Some(d))
+        } else {
+            let (g, dt) = law.gains(theta.abs());
+            (g, dt, None)
+        }
+    }
+
+    /// The slider of wire `i` of layer `law` at bending strain `e`, with its committed slip
+    /// from `slip` and its trial slip written into `trial`; `cap_old` as for `slider`.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn slide(
@@ -925,6 +979,7 @@ impl SectionLaw {
         gains: [f64; 2],
         slip: &[f64],
         trial: &mut [f64],
+        cap_old: impl FnOnce(bool) -> f64,
     ) -> SliderForce {
         let committed = slip.get(i).copied().unwrap_or(0.0);
         let f = slider(
@@ -935,6 +990,7 @@ impl SectionLaw {
             scale * gains[1],
             law.paper_factor,
             committed,
+            cap_old,
         );
         if let Some(t) = trial.get_mut(i) {
             *t = f.slip;

@@ -24,7 +24,9 @@ impl SectionLaw {
                 let (scale, _) = law.cap_scale(eps);
                 let lever = w.lever[1] * dir; // strain per unit |kappa|
                 let arm = lever.abs();
-                let f = self.slide(law, i, w.lever[1] * kappa, scale, w.gains, slip, &mut []);
+                // A report reads no slip work: the step's start is left out.
+                let e = w.lever[1] * kappa;
+                let f = self.slide(law, i, e, scale, w.gains, slip, &mut [], |_| 0.0);
                 // The side of the slider the force loads (the strain's side when it is zero).
                 let stretched = if f.force != 0.0 {
                     f.force > 0.0
@@ -116,7 +118,7 @@ impl SectionLaw {
                 let theta = phase.abs();
                 let gains = self.gains(&law, theta).0;
                 let e = l[0] * kappa[0] + l[1] * kappa[1];
-                let f = self.slide(law, i, e, scale, gains, slip, &mut []);
+                let f = self.slide(law, i, e, scale, gains, slip, &mut [], |_| 0.0);
                 let stretched = if f.force != 0.0 {
                     f.force > 0.0
                 } else {

@@ -33,7 +33,8 @@ pub struct SectionResponse {
     /// bending direction, for a section whose wires all stick, and for the `hysteretic` law,
     /// which books the energy change of a moving limit as slip work.
     pub energy_turn: [f64; 2],
-    /// Work dissipated by slip from the committed state to this trial (J/m; hysteretic law).
+    /// Work dissipated by slip from the committed state to this trial (J/m; hysteretic law):
+    /// the trapezoid of each slipping wire's friction limit over the step (module `slip_work`).
     pub slip_work: f64,
     /// Number of slipping wires.
     pub slipping: usize,
@@ -59,7 +60,8 @@ pub struct PlanarResponse {
     /// strain increment d eps the section dissipates `-energy_strain d eps` (SPEC 2: the
     /// non-potential work is reported as dissipation).
     pub energy_strain: f64,
-    /// Work dissipated by slip from the committed state to this trial (J/m; hysteretic law).
+    /// Work dissipated by slip from the committed state to this trial (J/m; hysteretic law):
+    /// the trapezoid of each slipping wire's friction limit over the step (module `slip_work`).
     pub slip_work: f64,
     /// Number of slipping wires.
     pub slipping: usize,

@@ -9,6 +9,7 @@
 //! per-wire laws of SPEC 2 follow from this one force law.
 
 use super::LawKind;
+use super::slip_work::trapezoid;
 
 /// State of a wire's contact with the core.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -36,7 +37,8 @@ pub(crate) struct SliderForce {
     /// d energy / d cap of the active side at fixed strain and slip (m/m): the slider's
     /// energy depends on the friction limit, which depends on the strand's axial strain.
     pub d_energy_cap: f64,
-    /// Work dissipated by the slip of this trial step from the committed slip (J/m).
+    /// Work dissipated by the slip of this trial step from the committed slip (J/m): the
+    /// trapezoid of the friction limit over the step (module `slip_work`).
     pub slip_work: f64,
     /// Slip strain after the trial (hysteretic law; unchanged for the others).
     pub slip: f64,
@@ -47,8 +49,11 @@ pub(crate) struct SliderForce {
 /// Evaluates the slider. `k` is eta E_w A_w (N), `e` the bending strain, `cap_pos >= 0` and
 /// `cap_neg >= 0` the friction limits of the force (N), `paper_factor` = cos^2(alpha) (the
 /// ratio of the slip force to the stick force at the `paper` law's switch, eq. (23)), `slip`
-/// the committed slip strain (hysteretic law only).
+/// the committed slip strain and `cap_old(positive)` the friction limit of the stretched
+/// (`true`) or shortened side at the step's start (N), which the slip work's trapezoid reads
+/// (hysteretic law only, called only for a slipping wire; module `slip_work`).
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn slider(
     kind: LawKind,
     k: f64,
@@ -57,6 +62,7 @@ pub(crate) fn slider(
     cap_neg: f64,
     paper_factor: f64,
     slip: f64,
+    cap_old: impl FnOnce(bool) -> f64,
 ) -> SliderForce {
     // Loop-invariant where the slider is inlined into a loop over wires: no division per wire.
     let inv_k = 1.0 / k;
@@ -126,7 +132,7 @@ pub(crate) fn slider(
                     true,
                     (0.5 * cap_pos * cap_pos * inv_k, 0.0),
                     s,
-                    cap_pos * (s - slip).abs(),
+                    trapezoid(cap_pos, cap_old(true), s - slip),
                 )
             } else if trial < -cap_neg {
                 let s = e + cap_neg * inv_k;
@@ -134,7 +140,7 @@ pub(crate) fn slider(
                     false,
                     (0.5 * cap_neg * cap_neg * inv_k, 0.0),
                     s,
-                    cap_neg * (s - slip).abs(),
+                    trapezoid(cap_neg, cap_old(false), s - slip),
                 )
             } else {
                 stick(trial, slip)
