@@ -22,6 +22,12 @@ pub struct SectionOptions {
     /// default the accumulated pressure of the layers outside, module `pressure`). A strand
     /// of one layer has the same law under every choice.
     pub slip_pressure: SlipPressure,
+    /// Phase samples per wire of the pitch-averaged law (`section.pitch_samples`; default 0,
+    /// the resolved law): with `S >= 2` each bending point stands for the whole pitch around
+    /// it, every wire's slider evaluated at `S` phases spread over the wire spacing `P / m`
+    /// of its layer (so the layer's `m S` sliders sample its phases evenly), each carrying
+    /// `1 / S` of the wire (module docs, "The pitch-averaged law").
+    pub pitch_samples: usize,
 }
 
 impl SectionOptions {
@@ -34,6 +40,7 @@ impl SectionOptions {
             stick_stiffness: StickStiffness::PlaneSection,
             slip_limit: SlipLimit::Paper,
             slip_pressure: SlipPressure::OwnLayer,
+            pitch_samples: 0,
         }
     }
 }
