@@ -223,3 +223,31 @@ fn pitch_average_converges_with_the_samples() {
         );
     }
 }
+
+/// The Newton iterations' moment ([`SectionLaw::planar_moment`], with the closed-form layer
+/// states of a strand of several layers) is the wire loop's of [`SectionLaw::planar`] for
+/// the pitch-averaged samples as for wires: along a load path with reversals of the 1x19
+/// strand (`hysteretic`, S = 4), to the rounding of sums over the samples.
+#[test]
+fn newton_moment_matches_the_sample_loop() {
+    let strand = one_by_19();
+    let law = SectionLaw::with_options(&strand, LawKind::Hysteretic, &options(4));
+    let eps = 1e-3;
+    let scale = law.still_curvature(eps);
+    let stick = law.stick_bending_stiffness();
+    let st = law.station(0.37);
+    let mut slip = vec![0.0; law.state_len()];
+    let mut trial = slip.clone();
+    for kappa in path(8.0 * scale, 6.0 * scale, 9.0 * scale, 40) {
+        let fast = law.planar_moment(&st, eps, kappa, &slip);
+        let full = law.planar(&st, eps, kappa, &slip, &mut trial);
+        let bound = 1e-12 * stick * 9.0 * scale;
+        assert!(
+            (fast.moment - full.moment).abs() <= bound,
+            "kappa {kappa:.3e}: {} against {}",
+            fast.moment,
+            full.moment
+        );
+        slip.copy_from_slice(&trial);
+    }
+}

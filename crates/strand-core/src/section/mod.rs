@@ -76,8 +76,9 @@
 //! not change along the pitch (every station has seen the same history) the section moment is
 //! the resolved law's average over the stations that carry those phases, and tends to its
 //! average over the pitch as `S` grows (the midpoint rule of a function of the phase with kinks
-//! where wires switch). Where the curvature changes over a pitch the averaged law lags the
-//! resolved one by that change. Each layer samples its own pitch; the closed-form layer states
+//! where wires switch). Where the curvature changes over a pitch every sample sees the
+//! point's curvature rather than its own station's: the law is meant for curvatures that
+//! change little over a pitch (measured in the manual, Performance). Each layer samples its own pitch; the closed-form layer states
 //! of a strand of several layers and every report work on the samples as on wires (a
 //! `wires.csv` row is then one phase sample with its share of the wire).
 
