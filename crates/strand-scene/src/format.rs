@@ -100,6 +100,12 @@ pub struct SectionFile {
     /// `strand_core::section::base_tension`).
     #[serde(default)]
     pub base_tension: Option<String>,
+    /// Phase samples per wire of the pitch-averaged law: 0 (default) is the resolved law;
+    /// 2 to 256 make each bending point stand for the whole pitch around it, every wire's
+    /// slider evaluated at that many phases (the elements then take the Gauss rule of
+    /// `models.equivalent.integration_points`, default 4, instead of the pitch rule).
+    #[serde(default)]
+    pub pitch_samples: Option<usize>,
 }
 
 /// A core wire.

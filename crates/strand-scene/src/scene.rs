@@ -662,6 +662,9 @@ fn count(path: &str, v: i64, min: i64, max: i64) -> Result<usize, SceneError> {
     }
 }
 
+/// Most phase samples per wire `section.pitch_samples` accepts.
+const MAX_PITCH_SAMPLES: usize = 256;
+
 fn section(file: Option<&SectionFile>) -> Result<SectionOptions, SceneError> {
     let mut options = SectionOptions::default();
     let Some(file) = file else {
@@ -714,6 +717,18 @@ fn section(file: Option<&SectionFile>) -> Result<SectionOptions, SceneError> {
                 ),
             )
         })?;
+    }
+    if let Some(samples) = file.pitch_samples {
+        if samples == 1 || samples > MAX_PITCH_SAMPLES {
+            return Err(SceneError::new(
+                "section.pitch_samples",
+                format!(
+                    "{samples} phase samples: expected 0 (the resolved law) or 2 to \
+                     {MAX_PITCH_SAMPLES}"
+                ),
+            ));
+        }
+        options.pitch_samples = samples;
     }
     if let Some(name) = file.slip_limit.as_deref() {
         options.slip_limit = SlipLimit::from_name(name).ok_or_else(|| {
@@ -1008,12 +1023,17 @@ impl Motion<'_> {
     }
 }
 
+/// The equivalent or traditional beam of `models`. `samples` is the pitch-averaged law's
+/// phase samples per wire (`section.pitch_samples`; 0 or 1: the resolved law), under which the
+/// equivalent beam takes the Gauss rule instead of the pitch rule and carries `samples`
+/// sliders per wire.
 fn beam(
     path: &str,
     m: &BeamModelFile,
     strand: &Strand,
     traditional: bool,
     element: ElementKind,
+    samples: usize,
 ) -> Result<BeamModel, SceneError> {
     let field = format!("{path}.elements");
     let elements = count(&field, m.elements, 1, i64::MAX)?;
@@ -1024,10 +1044,12 @@ fn beam(
     let l = strand.length() / elements as f64;
     // Bending points per element: the scene's Gauss rule, the pitch rule of the stick/slip
     // laws (the traditional beam has no wires: 4 points), as `strand_ancf::beam` builds them.
-    // The shortest of the layers' pitches sets the rule: it resolves every layer's phases.
+    // The shortest of the layers' pitches sets the rule: it resolves every layer's phases. A
+    // pitch-averaged law's bending point stands for a whole pitch: 4 points.
+    let averaged = samples > 1 && !traditional;
     let per_element = match (integration_points, strand.shortest_pitch()) {
         (Some(n), _) => n as f64,
-        (None, Some(pitch)) if !traditional => pitch_rule_points(l, pitch, element),
+        (None, Some(pitch)) if !traditional && !averaged => pitch_rule_points(l, pitch, element),
         _ => 4.0,
     };
     if integration_points.is_none() && per_element > MAX_BENDING_POINTS as f64 {
@@ -1037,7 +1059,8 @@ fn beam(
             format!(
                 "{elements} element(s) of {l:.4e} m each span {:.4e} wire pitches (P = {pitch:.4e} \
                  m); the pitch rule puts {} bending point(s) on every quarter pitch, {per_element:.4e} \
-                 per element, above the cap of {MAX_BENDING_POINTS}: use at least {:.0} elements",
+                 per element, above the cap of {MAX_BENDING_POINTS}: use at least {:.0} elements \
+                 (or the pitch-averaged law, `section.pitch_samples`)",
                 l / pitch,
                 points_per_quarter_pitch(element),
                 (elements as f64 * per_element / MAX_BENDING_POINTS as f64).ceil()
@@ -1047,7 +1070,7 @@ fn beam(
     let wires = if traditional {
         0
     } else {
-        strand.helical_wires()
+        strand.helical_wires() * samples.max(1)
     };
     let points = elements as f64 * per_element;
     let need = beam_memory(elements, points, wires);
@@ -1123,6 +1146,11 @@ fn fine(m: &FineModelFile, strand: &Strand) -> Result<FineModel, SceneError> {
 
 fn models(file: &SceneFile, strand: &Strand, element: ElementKind) -> Result<Models, SceneError> {
     let m = &file.models;
+    let samples = file
+        .section
+        .as_ref()
+        .and_then(|s| s.pitch_samples)
+        .unwrap_or(0);
     if m.equivalent.is_none() && m.traditional.is_none() && m.fine.is_none() {
         return Err(SceneError::new(
             "models",
@@ -1133,12 +1161,12 @@ fn models(file: &SceneFile, strand: &Strand, element: ElementKind) -> Result<Mod
         equivalent: m
             .equivalent
             .as_ref()
-            .map(|b| beam("models.equivalent", b, strand, false, element))
+            .map(|b| beam("models.equivalent", b, strand, false, element, samples))
             .transpose()?,
         traditional: m
             .traditional
             .as_ref()
-            .map(|b| beam("models.traditional", b, strand, true, element))
+            .map(|b| beam("models.traditional", b, strand, true, element, 0))
             .transpose()?,
         fine: m.fine.as_ref().map(|f| fine(f, strand)).transpose()?,
     })

@@ -1,5 +1,6 @@
 //! Integration points of an element: the reduced axial rule, the hourglass point and the
-//! bending points (the pitch rule or the scene's Gauss rule), with the section law's stations.
+//! bending points (the pitch rule, the scene's Gauss rule, or four Gauss points for a law
+//! without sliders or a pitch-averaged one), with the section law's stations.
 
 use strand_core::{SectionLaw, Station};
 
@@ -82,9 +83,11 @@ pub(super) fn element_rule(
     let axial = element_quadrature(l, AXIAL_POINTS).map_err(setup)?;
     let x0 = e as f64 * l;
     // The shortest of the layers' pitches sets the rule: it resolves every layer's phases.
+    // A pitch-averaged law's bending point stands for the whole pitch around it: the element
+    // is sized by its curvature and takes the Gauss rule of the constant law.
     let n = match (spec.bending_points, law.strand().shortest_pitch()) {
         (Some(n), _) => n,
-        (None, Some(pitch)) if law.sliders() > 0 => {
+        (None, Some(pitch)) if law.sliders() > 0 && !law.is_pitch_averaged() => {
             let points = pitch_rule_points(l, pitch, spec.element);
             if points > MAX_BENDING_POINTS as f64 {
                 return Err(BeamError::Setup(format!(

@@ -10,7 +10,12 @@ pub(super) struct LayerLaw {
     /// Index of the layer's first wire among every layer's wires (the station's and the slip
     /// state's order).
     pub first: usize,
+    /// Sliders of the layer per station: its wire count times [`Self::samples`].
     pub wires: usize,
+    /// Phase samples per wire: 1 for the resolved law, `section.pitch_samples` for the
+    /// pitch-averaged law (each sample's spring and friction limit carry 1 / samples of the
+    /// wire's).
+    pub samples: usize,
     pub radius: f64,
     /// The slider's spring: eta E_w A_w times the stick factor of `section.stick_stiffness`
     /// (N).

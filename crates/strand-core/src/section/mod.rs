@@ -63,6 +63,24 @@
 //! two differ. The alternative of Masing's rule (the direction of the curvature change since the
 //! last reversal) has no unique reversal in two dimensions: a rotating curvature reverses at
 //! every step by the test `(kappa - kappa_c) . (kappa_c - kappa_r) < 0`.
+//!
+//! # The pitch-averaged law
+//!
+//! With `section.pitch_samples` `S >= 2` ([`SectionOptions::pitch_samples`]) a station stands
+//! for the whole pitch around it: each wire of a layer of `m` wires and pitch `P` is a slider
+//! at each of the `S` phases it takes at `x + (s - (S - 1)/2) P / (m S)`, `s = 0..S`, all at
+//! the station's strain and curvature, each with `1 / S` of the wire's spring and friction
+//! limit (a slider's force is homogeneous of degree one in both and its slip of degree zero,
+//! so a sample is the wire's slider scaled). The layer's `m S` sliders sit at evenly spaced
+//! phases, `2 pi / (m S)` apart, and carry their own slip history: under a curvature that does
+//! not change along the pitch (every station has seen the same history) the section moment is
+//! the resolved law's average over the stations that carry those phases, and tends to its
+//! average over the pitch as `S` grows (the midpoint rule of a function of the phase with kinks
+//! where wires switch). Where the curvature changes over a pitch every sample sees the
+//! point's curvature rather than its own station's: the law is meant for curvatures that
+//! change little over a pitch (measured in the manual, Performance). Each layer samples its own pitch; the closed-form layer states
+//! of a strand of several layers and every report work on the samples as on wires (a
+//! `wires.csv` row is then one phase sample with its share of the wire).
 
 pub mod base_tension;
 mod direction;
@@ -270,19 +288,30 @@ impl SectionLaw {
                     // The stick factor of the layer's interface is a compliance in series with
                     // the wire's axial stiffness: it scales the slider's spring, not its
                     // friction limit.
-                    let k = options.stick_stiffness.factor(strand, j) * l.wire_axial_stiffness();
+                    // The pitch-averaged law: each of the layer's m wires stands as `samples`
+                    // sliders, each with 1 / samples of the wire's spring and friction limit
+                    // (a slider's force is homogeneous of degree one in both, its slip not at
+                    // all, so a sample is the wire's slider scaled by its weight).
+                    let samples = options.pitch_samples.max(1);
+                    let weight = |v: f64| if samples > 1 { v / samples as f64 } else { v };
+                    let k = weight(
+                        options.stick_stiffness.factor(strand, j) * l.wire_axial_stiffness(),
+                    );
                     // The accumulated pressure changes the limits of the layers with others
                     // outside them; the outermost keeps the capstan gain (module `pressure`).
                     let accumulated = pressure.is_some() && j + 1 < strand.layers().len();
                     LayerLaw {
-                        wires: l.wires(),
+                        wires: l.wires() * samples,
+                        samples,
                         radius: l.radius,
                         k,
                         inv_k: 1.0 / k,
-                        cap_per_strain: options.slip_limit.projection(a)
-                            * w.area()
-                            * w.material.youngs_modulus
-                            * c2,
+                        cap_per_strain: weight(
+                            options.slip_limit.projection(a)
+                                * w.area()
+                                * w.material.youngs_modulus
+                                * c2,
+                        ),
                         capstan: strand.friction() * a.sin(),
                         neutral_slope: match &pressure {
                             Some(p) if accumulated => p.neutral_slope(j),
@@ -290,7 +319,11 @@ impl SectionLaw {
                         },
                         accumulated,
                         index: j,
-                        first: strand.layers()[..j].iter().map(|l| l.wires()).sum(),
+                        first: strand.layers()[..j]
+                            .iter()
+                            .map(|l| l.wires())
+                            .sum::<usize>()
+                            * samples,
                         slip_limit: options.slip_limit,
                         paper_factor: match options.slip_limit {
                             SlipLimit::Paper => c2,
@@ -463,6 +496,17 @@ impl SectionLaw {
     pub fn sliders(&self) -> usize {
         self.sliders
     }
+    /// Phase samples per wire: 1 for the resolved law, `section.pitch_samples` for the
+    /// pitch-averaged law, whose bending point stands for a whole pitch (module docs).
+    pub fn pitch_samples(&self) -> usize {
+        self.layers.first().map_or(1, |l| l.samples)
+    }
+    /// Whether each bending point stands for a whole pitch (`section.pitch_samples` >= 2 and
+    /// a law with sliders): the element's quadrature is then set by its curvature, not by the
+    /// pitch.
+    pub fn is_pitch_averaged(&self) -> bool {
+        self.pitch_samples() > 1
+    }
     /// Number of layers the law has sliders for (0 for `constant` and plain wires).
     pub fn layer_count(&self) -> usize {
         self.layers.len()
@@ -510,9 +554,19 @@ impl SectionLaw {
         let mut wires = Vec::with_capacity(self.sliders());
         let mut planar = Vec::with_capacity(self.layers.len());
         for (law, h) in self.layers.iter().zip(self.strand.layers()) {
+            let m = h.wires();
+            // The pitch-averaged law's samples: wire i % m at the offset of sample i / m, the
+            // samples centred on x and spaced by P / (m S), so that the layer's m S phases
+            // are evenly spaced by 2 pi / (m S).
+            let spacing = h.pitch / (m * law.samples) as f64;
+            let centre = 0.5 * (law.samples as f64 - 1.0);
             let layer: Vec<WireStation> = (0..law.wires)
                 .map(|i| {
-                    let phase = h.phase(i, x);
+                    let phase = if law.samples > 1 {
+                        h.phase(i % m, x + ((i / m) as f64 - centre) * spacing)
+                    } else {
+                        h.phase(i, x)
+                    };
                     let (s, c) = phase.sin_cos();
                     WireStation {
                         layer: law.index,

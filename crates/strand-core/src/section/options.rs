@@ -25,6 +25,12 @@ pub struct SectionOptions {
     /// Whether K_min follows the axial strain (`section.base_tension`; default `fixed`, the
     /// tension-free value; module `base_tension`).
     pub base_tension: BaseTension,
+    /// Phase samples per wire of the pitch-averaged law (`section.pitch_samples`; default 0,
+    /// the resolved law): with `S >= 2` each bending point stands for the whole pitch around
+    /// it, every wire's slider evaluated at `S` phases spread over the wire spacing `P / m`
+    /// of its layer (so the layer's `m S` sliders sample its phases evenly), each carrying
+    /// `1 / S` of the wire (module docs, "The pitch-averaged law").
+    pub pitch_samples: usize,
 }
 
 impl SectionOptions {
@@ -38,6 +44,7 @@ impl SectionOptions {
             slip_limit: SlipLimit::Paper,
             slip_pressure: SlipPressure::OwnLayer,
             base_tension: BaseTension::Fixed,
+            pitch_samples: 0,
         }
     }
 }

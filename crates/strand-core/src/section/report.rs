@@ -45,7 +45,7 @@ impl SectionLaw {
                 let critical = law.critical_curvature(scale, factor, gain, theta, theta.sin());
                 let state = law.reported_state(f.state, arm, critical, kappa.abs());
                 WireReport {
-                    wire: i - law.first + 1,
+                    wire: (i - law.first) % (law.wires / law.samples) + 1,
                     layer: law.index + 1,
                     phase: w.phase,
                     k_stick: law.k * arm * arm,
@@ -128,7 +128,7 @@ impl SectionLaw {
                 let critical = law.critical_curvature(scale, factor, gain, theta, theta.sin());
                 let state = law.reported_state(f.state, arm, critical, knorm);
                 WireReport {
-                    wire: i - law.first + 1,
+                    wire: (i - law.first) % (law.wires / law.samples) + 1,
                     layer: law.index + 1,
                     phase,
                     k_stick: law.k * arm * arm,
