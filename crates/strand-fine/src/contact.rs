@@ -161,6 +161,25 @@ pub struct ContactPoint {
     pub law: ContactLaw,
 }
 
+/// How a static solve holds a contact's state through the Newton iterations of one active
+/// set ([`crate::statics`]): `Free` is the contact law itself; the held states fix its
+/// branch, so that the loads are smooth in the positions while the solve runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Hold {
+    /// The law decides open, stick or slip at every evaluation.
+    #[default]
+    Free,
+    /// No force, whatever the gap.
+    Open,
+    /// Closed and stuck: the normal spring acts at any gap (in tension too, `N = -k_n g`),
+    /// the tangential spring without the Coulomb cap.
+    Stick,
+    /// Closed and slipping: the normal spring as for `Stick`; the tangential force is
+    /// `mu max(N, 0)` along the held direction ([`ContactHistory::slip_direction`] in the
+    /// tangent plane), none where the held direction is zero (frictionless).
+    Slip,
+}
+
 /// Committed history of a contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactHistory {
@@ -175,6 +194,11 @@ pub struct ContactHistory {
     pub on_wire: Vector3<f64>,
     /// Contact point at the last commit in core segment `core_segment`'s body axes (m).
     pub on_core: Vector3<f64>,
+    /// State held by the static solve's active set; `Free` in every committed history.
+    pub hold: Hold,
+    /// Direction of the friction force on the wire held with [`Hold::Slip`] (world axes,
+    /// projected on the current tangent plane at every evaluation).
+    pub slip_direction: Vector3<f64>,
 }
 
 impl ContactHistory {
@@ -186,6 +210,8 @@ impl ContactHistory {
             displacement: Vector3::zeros(),
             on_wire: Vector3::zeros(),
             on_core: Vector3::zeros(),
+            hold: Hold::Free,
+            slip_direction: Vector3::zeros(),
         }
     }
 }
@@ -367,7 +393,8 @@ fn respond_into<W: Placement, C: Placement>(
     let d = p - q;
     let dist = d.norm();
     let gap = dist - rest_distance;
-    if gap >= 0.0 || dist == 0.0 {
+    let held_closed = matches!(history.hold, Hold::Stick | Hold::Slip);
+    if history.hold == Hold::Open || (gap >= 0.0 && !held_closed) || dist == 0.0 {
         *out = ContactLoad::open_at(j);
         return;
     }
@@ -390,9 +417,25 @@ fn respond_into<W: Placement, C: Placement>(
         (Vector3::zeros(), x, x)
     };
     let kt = law.tangential_stiffness;
-    let cap = law.friction * fn_;
+    let cap = law.friction * fn_.max(0.0);
     let un = u.norm();
-    let (u_el, state, slip_work) = if kt * un > cap {
+    let slips = match history.hold {
+        Hold::Free => kt * un > cap,
+        Hold::Slip => true,
+        Hold::Stick | Hold::Open => false,
+    };
+    let held_direction = (history.hold == Hold::Slip)
+        .then(|| history.slip_direction - n * n.dot(&history.slip_direction))
+        .filter(|d| d.norm() > 0.0);
+    let (u_el, state, slip_work) = if history.hold == Hold::Slip {
+        // Held slip: the friction force mu N along the held direction, none without one.
+        let u_el = held_direction.map_or(Vector3::zeros(), |d| d * (-cap / (kt * d.norm())));
+        (
+            u_el,
+            ContactState::Slip,
+            cap * un - 0.5 * kt * u_el.norm_squared(),
+        )
+    } else if slips {
         let u_el = if un > 0.0 { u * (cap / (kt * un)) } else { u };
         (u_el, ContactState::Slip, cap * (un - cap / kt))
     } else {
@@ -419,6 +462,8 @@ fn respond_into<W: Placement, C: Placement>(
             displacement: u_el,
             on_wire: wire.to_body(&(x - c)),
             on_core: cj.to_body(&(x - cc)),
+            hold: Hold::Free,
+            slip_direction: Vector3::zeros(),
         },
     };
 }
@@ -597,6 +642,8 @@ mod tests {
                         displacement: Vector3::new(1e-7, -3e-7, 2e-7),
                         on_wire: Vector3::new(-2e-4, 1e-3, 0.0),
                         on_core: Vector3::new(1e-3, 1.4e-3, 5e-4),
+                        hold: Hold::Free,
+                        slip_direction: Vector3::zeros(),
                     },
                 ] {
                     let got = evaluate(&cp, &history, &wire, &core, &segs);
@@ -612,6 +659,69 @@ mod tests {
         }
         // Every branch of the law was compared.
         assert!(compared.iter().all(|&c| c > 0), "{compared:?}");
+    }
+
+    /// The held states against the closed forms of one contact (k_n = k_t = 1e6 N/m, mu =
+    /// 0.3): a contact held stuck keeps its normal spring at a positive gap (tension
+    /// `k_n g`) and its tangential spring past the cap; one held open carries nothing while
+    /// it penetrates; one held slipping carries `mu N` along the held direction; `Free` is
+    /// the law.
+    #[test]
+    fn held_states_fix_the_law_branch() {
+        let cp = point(1e6);
+        let core = [Pose::new(Vector3::zeros(), UnitQuaternion::identity())];
+        let seg = [Segment::cylinder(0.02, 1.5e-3, 7801.0)];
+        let at = |x: f64, gap: f64| {
+            Pose::new(
+                Vector3::new(x, 2.5e-3 + gap, 0.0),
+                UnitQuaternion::identity(),
+            )
+        };
+        let with = |hold: Hold, h: ContactHistory| ContactHistory {
+            hold,
+            slip_direction: Vector3::new(0.0, 0.0, 1.0),
+            ..h
+        };
+        let open = ContactHistory::open(0);
+        let close = |a: Vector3<f64>, b: Vector3<f64>| (a - b).norm() <= 1e-9 * b.norm().max(1.0);
+        // Apart by 1 um: the law is open; held stuck, the spring pulls the wire in by 1 N.
+        let apart = at(0.0, 1e-6);
+        assert_eq!(
+            evaluate(&cp, &open, &apart, &core, &seg).state,
+            ContactState::Open
+        );
+        let l = evaluate(&cp, &with(Hold::Stick, open), &apart, &core, &seg);
+        assert!(close(l.force_wire, Vector3::new(0.0, -1.0, 0.0)), "{l:?}");
+        // Pressed by 1 um: the law pushes out by 1 N; held open, nothing.
+        let pressed = at(0.0, -1e-6);
+        let l = evaluate(&cp, &open, &pressed, &core, &seg);
+        assert!(close(l.force_wire, Vector3::new(0.0, 1.0, 0.0)), "{l:?}");
+        let l = evaluate(&cp, &with(Hold::Open, open), &pressed, &core, &seg);
+        assert_eq!(l.state, ContactState::Open);
+        assert_eq!(l.force_wire, Vector3::zeros());
+        // Closed at `pressed`, then slid 1 um along the core: k_t u = 1 N past the cap 0.3 N.
+        let stuck = evaluate(&cp, &open, &pressed, &core, &seg).history;
+        let slid = at(1e-6, -1e-6);
+        let l = evaluate(&cp, &stuck, &slid, &core, &seg);
+        assert_eq!(l.state, ContactState::Slip);
+        assert!(
+            close(l.tangential_force, Vector3::new(-0.3, 0.0, 0.0)),
+            "{l:?}"
+        );
+        let l = evaluate(&cp, &with(Hold::Stick, stuck), &slid, &core, &seg);
+        assert_eq!(l.state, ContactState::Stick);
+        assert!(
+            close(l.tangential_force, Vector3::new(-1.0, 0.0, 0.0)),
+            "{l:?}"
+        );
+        let l = evaluate(&cp, &with(Hold::Slip, stuck), &slid, &core, &seg);
+        assert_eq!(l.state, ContactState::Slip);
+        assert!(
+            close(l.tangential_force, Vector3::new(0.0, 0.0, 0.3)),
+            "{l:?}"
+        );
+        // Held states are never committed.
+        assert_eq!(l.history.hold, Hold::Free);
     }
 
     #[test]

@@ -41,7 +41,7 @@ use nalgebra::Vector3;
 use rayon::prelude::*;
 use strand_core::{Contact, HelixLayer};
 
-use crate::contact::{self, ContactHistory, ContactLaw, ContactLoad, ContactState};
+use crate::contact::{self, ContactHistory, ContactLaw, ContactLoad, ContactState, Hold};
 use crate::joint::perturb;
 use crate::model::{FineModel, ModelState};
 use crate::segment::{Frame, Placement, Pose, Segment};
@@ -196,9 +196,10 @@ pub fn owns(ap: &Approach, la: f64) -> bool {
 
 /// One contact per crossing: where the links of one partner wire on two consecutive segments
 /// (`links` in segment-major order, the same partners on every segment) both hold a contact
-/// (`depth(i)`: its depth, `None` where link `i` holds none), the shallower is dropped, so
-/// that a crossing at a node between two chords is counted once. Returns the dropped flags.
-pub fn duplicates(links: &[WireLink], depth: impl Fn(usize) -> Option<f64>) -> Vec<bool> {
+/// (`rank(i)`: its rank, `None` where link `i` holds none), the lower-ranked is dropped, so
+/// that a crossing at a node between two chords is counted once. The loads rank by
+/// [`centrality`]; [`FineModel::link_approaches`] by depth. Returns the dropped flags.
+pub fn duplicates(links: &[WireLink], rank: impl Fn(usize) -> Option<f64>) -> Vec<bool> {
     let mut dropped = vec![false; links.len()];
     let Some(first) = links.first() else {
         return dropped;
@@ -215,11 +216,22 @@ pub fn duplicates(links: &[WireLink], depth: impl Fn(usize) -> Option<f64>) -> V
         {
             continue;
         }
-        if let (Some(di), Some(dj)) = (depth(i), depth(j)) {
+        if let (Some(di), Some(dj)) = (rank(i), rank(j)) {
             dropped[if di < dj { i } else { j }] = true;
         }
     }
     dropped
+}
+
+/// How central the contact point of the closed link load `c` is on its segment of length
+/// `la`: `-|s| / la` with `s` its distance from the segment's centre along the axis (-).
+/// The one-contact-per-crossing rule of the loads keeps the more central of two links: the
+/// crossing stays with one link until it slides past the node between their segments. (Kept
+/// by depth, it jumped between the two with micrometres of sliding: the chords kink at the
+/// node, and whichever link carried the crossing left the other the deeper, so that Newton
+/// stalled on the 1+6+12 strand with friction; Multilayer page.)
+pub fn centrality(c: &ContactLoad, la: f64) -> f64 {
+    -c.history.on_wire.x.abs() / la
 }
 
 /// Evaluates `link` of the segment at `a` (length `la`) against partner segment `b` at `pb`
@@ -233,7 +245,9 @@ pub fn evaluate_pair<P: Placement>(
     anchor: &P,
 ) -> ContactLoad {
     let ap = approach(link, a, la, pb, lb);
-    if !owns(&ap, la) {
+    // A link held closed keeps its contact as it moves past its segment's reach.
+    let held_closed = matches!(history.hold, Hold::Stick | Hold::Slip);
+    if !owns(&ap, la) && !held_closed {
         return ContactLoad::open_at(b);
     }
     contact::respond(
@@ -358,7 +372,8 @@ impl FineModel {
     }
 
     /// The contact each link holds at `state`: its closest approach where the link owns one
-    /// (within its segment's reach, one per crossing, [`duplicates`] by the smaller gap),
+    /// (within its segment's reach, one per crossing, [`duplicates`] by the smaller gap; the
+    /// loads keep the more central link, [`centrality`]),
     /// else `None`; per wire in link order.
     pub fn link_approaches(&self, state: &ModelState) -> Vec<Vec<Option<Approach>>> {
         self.paired_links(state)
@@ -401,7 +416,8 @@ impl FineModel {
                 })
                 .collect();
             let dropped = duplicates(&w.links, |i| {
-                (loads[i].state != ContactState::Open).then_some(loads[i].normal_force)
+                (loads[i].state != ContactState::Open && paired[i].history.hold == Hold::Free)
+                    .then(|| centrality(&loads[i], paired[i].own.1))
             });
             kept.extend(
                 paired
@@ -440,7 +456,13 @@ impl FineModel {
                 if c0.state == ContactState::Open {
                     return None;
                 }
-                let k = contact_difference(&c0, &c.link.law, 1e-7 * 0.5 * c.link.radii, eval);
+                let k = contact_difference(
+                    &c0,
+                    &c.link.law,
+                    1e-7 * 0.5 * c.link.radii,
+                    c.history.hold,
+                    eval,
+                );
                 Some(ElementTangent {
                     segments: c.global.map(Some),
                     stiffness: k,

@@ -54,7 +54,7 @@ pub mod tangent;
 pub use bending::{BendingError, BendingPoint, BendingTest, Pressure};
 pub use chain::{Chain, WireSection};
 pub use contact::{
-    ContactHistory, ContactLaw, ContactLoad, ContactOptions, ContactPoint, ContactState,
+    ContactHistory, ContactLaw, ContactLoad, ContactOptions, ContactPoint, ContactState, Hold,
     NormalPenalty,
 };
 pub use dynamics::{Integrator, stable_time_step};

@@ -20,7 +20,7 @@ use strand_core::{HelixLayer, Strand};
 
 use crate::chain::{Chain, WireSection};
 use crate::contact::{
-    self, ContactHistory, ContactLaw, ContactLoad, ContactOptions, ContactPoint, ContactState,
+    self, ContactHistory, ContactLaw, ContactLoad, ContactOptions, ContactPoint, ContactState, Hold,
 };
 use crate::interlayer::{self, LinkKind, WireLink};
 use crate::joint::{JointSpring, JointStiffness};
@@ -728,9 +728,11 @@ impl FineModel {
                 );
             }
             // One contact per crossing at the chords' nodes.
+            // Links held by the static solve's active set are kept as held.
             let dropped = interlayer::duplicates(&w.links, |i| {
                 let c = &to_wires[i];
-                (c.state != ContactState::Open).then_some(c.normal_force)
+                (c.state != ContactState::Open && hist[nc + i].hold == Hold::Free)
+                    .then(|| interlayer::centrality(c, w.chain.segments[w.links[i].segment].length))
             });
             for ((lk, out), drop) in w.links.iter().zip(to_wires.iter_mut()).zip(dropped) {
                 if drop {

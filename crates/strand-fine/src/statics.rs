@@ -13,11 +13,29 @@
 //! tangent is the assembled element stiffness, factored by a sparse LU. Contact histories are
 //! frozen during the iterations of a load step and committed when it converges, so friction follows
 //! the load path step by step.
+//!
+//! Active sets of the contact states (a study option, [`StaticOptions::active_set`], off by
+//! default; models with wire-to-wire links only). A stiff normal penalty makes a contact's
+//! loads smooth only within nanometres of relative motion, and a Newton step of a bending
+//! increment moves wires by micrometres: plain Newton carries contacts across zero gap and
+//! across the stick/slip limit from one iterate to the next and stalls. Here a load step is
+//! solved on held contact states instead ([`crate::contact::Hold`]), each held through a whole
+//! Newton solve: open (no force), stuck (the normal spring also carries tension, the tangential
+//! spring has no cap) or slipping (`mu N` along a held direction). The first set: contacts open
+//! at the first iterate held open, contacts closed at the last commit slipping without friction,
+//! others by their state there. At a held solution the law is evaluated; the step is accepted
+//! when the law leaves every segment within the residual allowance `tolerance F_ref + F_round`.
+//! Otherwise every contact whose held force differs from the law's by more than the bound `B`
+//! (from the residual allowance, divided by 4 while no contact differs by more) takes the law's
+//! state and friction direction, the largest differences first, at most twice as many as were
+//! taken in the last round; while a closed contact changes its friction, none is released (its
+//! tension may come from friction past the cap). A held solve that stalls goes back to the
+//! last held solution with half the changes. The histories are committed from the law.
 
 use nalgebra::{SMatrix, Vector3};
 
-use crate::contact::ContactState;
-use crate::model::{FineModel, ModelState, WireLoads};
+use crate::contact::{ContactLoad, ContactState, Hold};
+use crate::model::{FineModel, ModelState, WireLoads, WireState};
 use crate::so3;
 use crate::sparse_tangent::SparseTangent;
 
@@ -51,6 +69,11 @@ pub struct StaticOptions {
     /// iterations to kappa = 0.59 1/m and failed at 1.21 1/m; with residual descent it takes
     /// 15 and 38.) The polish of a settled state ([`mod@crate::settle`]) turns it off.
     pub potential_descent: bool,
+    /// Solve a load step of a model with wire-to-wire links on active sets of its contacts'
+    /// states (module docs; a study option, off by default: on the 1+6+12 bending test with
+    /// friction the sets do not settle). One-layer models, which have no links, are solved by
+    /// plain Newton whatever this flag.
+    pub active_set: bool,
 }
 
 impl Default for StaticOptions {
@@ -65,6 +88,7 @@ impl Default for StaticOptions {
             max_rotation: 0.1,
             max_translation: None,
             potential_descent: true,
+            active_set: false,
         }
     }
 }
@@ -412,6 +436,172 @@ impl Newton {
     }
 }
 
+/// Most solves of one load step on active sets of the links' states.
+const ACTIVE_SET_ROUNDS: usize = 30;
+
+/// The held state of a link whose contact law gives `state`.
+fn hold_of(state: ContactState) -> Hold {
+    match state {
+        ContactState::Open => Hold::Open,
+        ContactState::Stick => Hold::Stick,
+        ContactState::Slip => Hold::Slip,
+    }
+}
+
+/// Sets the hold and held slip direction of every contact in `state` to `hold(wire,
+/// contact)`.
+fn set_holds(state: &mut ModelState, hold: impl Fn(usize, usize) -> (Hold, Vector3<f64>)) {
+    for (i, h) in state.contacts.iter_mut().enumerate() {
+        for (k, hk) in h.iter_mut().enumerate() {
+            (hk.hold, hk.slip_direction) = hold(i, k);
+        }
+    }
+}
+
+/// The hold a contact takes from the law's evaluation `c`: its state, and the direction of
+/// its friction force where it slips.
+fn held(c: &ContactLoad) -> (Hold, Vector3<f64>) {
+    (hold_of(c.state), c.tangential_force)
+}
+
+/// The contacts' loads in `loads`, per wire in contact order.
+fn contact_loads(loads: &[WireLoads]) -> Vec<Vec<ContactLoad>> {
+    loads.iter().map(|l| l.contacts.clone()).collect()
+}
+
+impl Newton {
+    /// [`Newton::solve`] of one load step on active sets of the links' contact states (module
+    /// docs). Leaves every hold `Free` in `state` and in the trial state.
+    fn solve_active_set(
+        &mut self,
+        model: &FineModel,
+        state: &mut ModelState,
+        lambda: f64,
+        options: &StaticOptions,
+        sc: &Scales,
+    ) -> Result<(usize, f64), (usize, Failure)> {
+        let result = self.active_set_rounds(model, state, lambda, options, sc);
+        let free = |_, _| (Hold::Free, Vector3::zeros());
+        set_holds(state, free);
+        set_holds(&mut self.trial, free);
+        result
+    }
+
+    fn active_set_rounds(
+        &mut self,
+        model: &FineModel,
+        state: &mut ModelState,
+        lambda: f64,
+        options: &StaticOptions,
+        sc: &Scales,
+    ) -> Result<(usize, f64), (usize, Failure)> {
+        type Held = (Hold, Vector3<f64>);
+        type Holds = Vec<Vec<Held>>;
+        // The first active set: the law's states at the first iterate, with the contacts
+        // closed at the last commit slipping without friction (the friction forces of a
+        // step that slides the wires are not known before it is solved).
+        model.compute_loads(state, lambda, &mut self.loads);
+        let mut holds: Holds = contact_loads(&self.loads)
+            .iter()
+            .map(|l| {
+                l.iter()
+                    .map(|c| match c.state {
+                        ContactState::Open => (Hold::Open, Vector3::zeros()),
+                        // Closed at the last commit: frictionless for the first solve.
+                        _ if c.history.closed => (Hold::Slip, Vector3::zeros()),
+                        _ => held(c),
+                    })
+                    .collect()
+            })
+            .collect();
+        let mut good: Option<(Vec<WireState>, Holds)> = None;
+        // Changes asked at the last converged active set: (difference of the held and the
+        // law's force (N), wire, contact, the law's hold), largest first.
+        let mut changes: Vec<(f64, usize, usize, Held)> = Vec::new();
+        let mut limit = usize::MAX;
+        let mut bound = sc.force_allowance;
+        let mut iterations = 0;
+        let mut rel = f64::NAN;
+        for _ in 0..ACTIVE_SET_ROUNDS {
+            set_holds(state, |i, k| holds[i][k]);
+            set_holds(&mut self.trial, |i, k| holds[i][k]);
+            let res = self.solve(model, state, lambda, options, sc);
+            match res {
+                Ok((it, _)) => iterations += it,
+                Err((it, Failure::Stalled(r))) => {
+                    iterations += it;
+                    rel = r;
+                    // Back to the last converged active set with half its changes.
+                    let Some((poses, last)) = &good else {
+                        return Err((iterations, Failure::Stalled(r)));
+                    };
+                    limit = limit.min(changes.len()) / 2;
+                    if limit == 0 {
+                        return Err((iterations, Failure::Stalled(r)));
+                    }
+                    for (ws, p) in state.wires.iter_mut().zip(poses) {
+                        ws.poses.copy_from_slice(&p.poses);
+                    }
+                    holds.clone_from(last);
+                    for &(_, i, k, h) in &changes[..limit] {
+                        holds[i][k] = h;
+                    }
+                    continue;
+                }
+                Err((it, f)) => return Err((iterations + it, f)),
+            }
+            model.compute_loads(state, lambda, &mut self.loads);
+            let at_held = contact_loads(&self.loads);
+            // The law at the held solution.
+            set_holds(state, |_, _| (Hold::Free, Vector3::zeros()));
+            model.compute_loads(state, lambda, &mut self.loads);
+            let (rmax, _, r) = residual_norms(&self.loads, sc);
+            rel = r;
+            if rmax.is_nan() {
+                return Err((iterations, Failure::NonFinite));
+            }
+            if rmax <= 1.0 || rel <= sc.tolerance {
+                return Ok((iterations, rel));
+            }
+            let free = contact_loads(&self.loads);
+            good = Some((state.wires.clone(), holds.clone()));
+            loop {
+                changes.clear();
+                for (i, (a, b)) in at_held.iter().zip(&free).enumerate() {
+                    for (k, (a, b)) in a.iter().zip(b).enumerate() {
+                        let d = (a.force_wire - b.force_wire).norm();
+                        if d > bound {
+                            changes.push((d, i, k, held(b)));
+                        }
+                    }
+                }
+                if !changes.is_empty() || bound < 1e-6 * sc.force_allowance {
+                    break;
+                }
+                bound *= 0.25;
+            }
+            if changes.is_empty() {
+                return Err((iterations, Failure::Stalled(rel)));
+            }
+            // Friction first: while a closed contact changes between stick and slip (or its
+            // slip direction), none is released (its tension may come from friction forces
+            // past the cap).
+            let friction = changes
+                .iter()
+                .any(|&(_, i, k, h)| holds[i][k].0 != Hold::Open && h.0 != Hold::Open);
+            if friction {
+                changes.retain(|&(_, i, k, h)| !(holds[i][k].0 != Hold::Open && h.0 == Hold::Open));
+            }
+            changes.sort_by(|a, b| b.0.total_cmp(&a.0));
+            limit = limit.saturating_mul(2).min(changes.len());
+            for &(_, i, k, h) in &changes[..limit] {
+                holds[i][k] = h;
+            }
+        }
+        Err((iterations, Failure::Stalled(rel)))
+    }
+}
+
 /// True when the Newton correction `delta` at `state` moves no segment by more than the
 /// larger of the position round-off and `tolerance` times the largest displacement from
 /// rest, and turns none by more than the larger of 100 eps and `tolerance` times the
@@ -460,7 +650,12 @@ pub fn solve_static_with_progress(
             reached + increment
         };
         let step = steps + 1;
-        match newton.solve(model, state, lambda, options, &sc) {
+        let attempt = if options.active_set && model.link_count() > 0 {
+            newton.solve_active_set(model, state, lambda, options, &sc)
+        } else {
+            newton.solve(model, state, lambda, options, &sc)
+        };
+        match attempt {
             Ok((it, rel)) => {
                 iterations += it;
                 residual = rel;

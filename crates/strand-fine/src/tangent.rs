@@ -124,6 +124,10 @@ impl FineModel {
                         contact::evaluate_pair(cp, h, &wp, &cj, j, lj, &anchor)
                     };
                     if eval(0, 0.0).state == contact::ContactState::Open {
+                        // Held open by the static solve's active set: no load, no tangent.
+                        if h.hold == contact::Hold::Open {
+                            continue;
+                        }
                         // A contact at exactly zero gap (the lay geometry) enters with its
                         // normal spring, so that Newton sees the core under the wire before
                         // it penetrates.
@@ -143,7 +147,13 @@ impl FineModel {
                         continue;
                     }
                     let c0 = eval(0, 0.0);
-                    let k = contact_difference(&c0, &cp.law, 1e-7 * w.chain.section.radius, eval);
+                    let k = contact_difference(
+                        &c0,
+                        &cp.law,
+                        1e-7 * w.chain.section.radius,
+                        h.hold,
+                        eval,
+                    );
                     out.push(ElementTangent {
                         segments: [Some(off + cp.segment), Some(j)],
                         stiffness: k,
@@ -305,16 +315,24 @@ pub(crate) fn contact_jacobian(
 /// segments, `-dQ/dq` (N/m, N, N m per rad): `eval(col, h)` gives the loads with coordinate
 /// `col` moved by `h`. Steps of `step_x0` (m) and 1e-7 rad, shrunk to a tenth of the distance
 /// from `c0` to the nearest switch of the law (the penalty's kink at zero gap, the stick-slip
-/// limit), so that the differences stay on one branch.
+/// limit; for a state held by the static solve's active set, [`contact::Hold`], only the
+/// friction cap's kink at N = 0), so that the differences stay on one branch.
 pub(crate) fn contact_difference(
     c0: &ContactLoad,
     law: &contact::ContactLaw,
     step_x0: f64,
+    hold: contact::Hold,
     eval: impl Fn(usize, f64) -> ContactLoad,
 ) -> SMatrix<f64, 12, 12> {
     let mut margin = c0.normal_force / law.normal_stiffness;
     let cap = law.friction * c0.normal_force;
-    if cap > 0.0 {
+    if hold != contact::Hold::Free {
+        // A held state's loads are smooth but for the friction cap's kink at N = 0 (slip).
+        margin = match hold {
+            contact::Hold::Slip => margin.abs(),
+            _ => f64::INFINITY,
+        };
+    } else if cap > 0.0 {
         margin = margin.min(match c0.state {
             contact::ContactState::Slip => c0.slip_work / cap,
             _ => (cap - c0.tangential_force.norm()) / law.tangential_stiffness,

@@ -5,7 +5,8 @@ use strand_core::BaseStiffness;
 use strand_core::{LayDirection, LayerSpec, Material, Strand, StrandSpec, WireSpec};
 use strand_fine::interlayer::{self, LinkKind};
 use strand_fine::{
-    BendingTest, ContactOptions, Discretisation, FineModel, ModelState, NormalPenalty, Support,
+    BendingTest, ContactOptions, ContactState, Discretisation, FineModel, ModelState,
+    NormalPenalty, Support,
 };
 
 fn steel() -> Material {
@@ -176,6 +177,9 @@ fn probe_frictionless_1x19() {
     } else if relief > 0.0 {
         test.contact.normal_penalty = NormalPenalty::StrainRelief(relief);
     }
+    // ACTIVE_SET=1: load steps solved on active sets of the contacts' states
+    // (StaticOptions::active_set).
+    test.statics.active_set = env("ACTIVE_SET", 0.0) > 0.0;
     // STICK_LOSS: the stick spring's allowed loss of stiffness (ContactOptions::stick_loss).
     test.contact.stick_loss = env("STICK_LOSS", test.contact.stick_loss);
     // With friction (MU), curvatures K/4, K/2, K, back to -K and up to K again.
@@ -215,6 +219,60 @@ fn probe_frictionless_1x19() {
         k / s.min_bending_stiffness(BaseStiffness::Costello),
         start.elapsed().as_secs_f64()
     );
+}
+
+/// The 1+6+12 strand with friction (mu = 0.3, 100 N, 3 outer pitches, 8 segments per pitch,
+/// the strain-relief penalty): the first bending step, 0.0125 1/m, converges by plain Newton
+/// with no halving of the increment, its contacts satisfy the Coulomb bounds (closed: N > 0
+/// and |F_t| <= mu N; slipping: |F_t| = mu N) and its secant stiffness lies between the
+/// closed forms K_min (all slip, Costello) and K_max (plane sections). Until the crossing
+/// rule kept the more central of two links, this step stalled at a scaled residual of about
+/// 2e-2 (Multilayer page, "Fine bending with friction").
+#[test]
+fn friction_bending_step_of_1x19_converges_within_the_coulomb_bounds() {
+    let s = strand_1x19(1.0, false);
+    let mu = s.spec().friction;
+    let mut test = BendingTest::frictionless(3, 8, 100.0, 0.0125);
+    test.friction = mu;
+    test.max_halvings = 0;
+    let (curve, m, state) = test
+        .run_with_state(&s)
+        .expect("first friction bending step");
+    let p = curve.last().unwrap();
+    let mut loads = m.load_buffers();
+    m.compute_loads(&state, 1.0, &mut loads);
+    let (mut closed, mut slipping) = (0, 0);
+    for c in loads.iter().flat_map(|l| &l.contacts) {
+        let ft = c.tangential_force.norm();
+        match c.state {
+            ContactState::Open => assert_eq!(c.force_wire, Vector3::zeros()),
+            ContactState::Stick => {
+                assert!(c.normal_force > 0.0 && ft <= mu * c.normal_force * (1.0 + 1e-12));
+                closed += 1;
+            }
+            ContactState::Slip => {
+                assert!(c.normal_force > 0.0);
+                assert!((ft - mu * c.normal_force).abs() <= 1e-12 * mu * c.normal_force);
+                closed += 1;
+                slipping += 1;
+            }
+        }
+    }
+    let k = p.secant_stiffness();
+    let (k_min, k_max) = (
+        s.min_bending_stiffness(BaseStiffness::Costello),
+        s.max_bending_stiffness(BaseStiffness::Costello),
+    );
+    println!(
+        "kappa {:.4e} 1/m in {} Newton iterations: {closed} contacts closed, {slipping} \
+         slipping; M / kappa = {k:.4e} N m^2 = {:.4} K_min, {:.4} K_max",
+        p.curvature,
+        p.iterations,
+        k / k_min,
+        k / k_max
+    );
+    assert!(closed > 0 && slipping > 0 && slipping < closed);
+    assert!(k_min < k && k < k_max, "{k} outside [{k_min}, {k_max}]");
 }
 
 /// The assembled tangent with the wire-to-wire links (central differences of each link's
