@@ -11,6 +11,7 @@ mod bonded;
 mod book;
 mod conductor;
 mod hard;
+mod multilayer_curve;
 mod paper;
 mod pareto;
 mod stiffness;
@@ -65,6 +66,12 @@ enum Task {
     /// curve at 40 kN (validation/conductor/), beside the classical analytic models, at the
     /// literature friction coefficient and at the best-fitting one; target/conductor/.
     Conductor(conductor::ConductorArgs),
+    /// The equivalent section law of the 1+6+12 strand against the fine virtual bending test
+    /// with friction (examples/steel-1x19-swing.json): moment against curvature with load
+    /// reversals at 100 and 1000 N, 8, 12 and 16 segments per pitch, each point judged within
+    /// 5 % with the fine model's mesh change added; target/multilayer-curve/. Fails on a point
+    /// that misses it.
+    MultilayerCurve(multilayer_curve::MultilayerCurveArgs),
 }
 
 fn main() -> anyhow::Result<()> {
@@ -79,6 +86,12 @@ fn main() -> anyhow::Result<()> {
         Task::Bonded(args) => bonded_and_exit(&args),
         Task::Book(args) => book::run(&args),
         Task::Conductor(args) => conductor::run(&args),
+        Task::MultilayerCurve(args) => {
+            if !multilayer_curve::run(&args)? {
+                std::process::exit(1);
+            }
+            Ok(())
+        }
     }
 }
 

@@ -23,6 +23,8 @@ pub enum Page {
     Validation,
     /// `performance.md`: pareto, bench-peers.
     Performance,
+    /// `multilayer.md`: multilayer-curve.
+    Multilayer,
 }
 
 impl Page {
@@ -31,6 +33,7 @@ impl Page {
         match self {
             Page::Validation => "validation.md",
             Page::Performance => "performance.md",
+            Page::Multilayer => "multilayer.md",
         }
     }
 }
