@@ -52,7 +52,8 @@ def test_broadcasting_and_shapes(scene):
     flat = strand.section(scene, k.ravel(), 1e-3, x=np.tile([0.0, 0.1, 0.2, 0.3], 3))
     assert np.array_equal(flat["moment"], r["moment"].ravel())
     h = strand.section(scene, k, 1e-3, law="hysteretic")
-    assert h["state"].shape == (3, 4, 8 + 2)  # a slip per wire, then the stored direction
+    # a slip per wire, then the stored bending direction and the committed strain
+    assert h["state"].shape == (3, 4, 8 + 3)
     with pytest.raises(ValueError, match="state: shape"):
         strand.section(scene, k, 1e-3, state=np.zeros((2, 2)), law="hysteretic")
     with pytest.raises(ValueError, match="must lie on the strand"):
