@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 use strand_core::{SectionLaw, Strand};
-use strand_fine::{BendingError, BendingPoint, BendingTest, ContactOptions};
+use strand_fine::{BendingError, BendingPoint, BendingTest, ContactOptions, NormalPenalty};
 
 use crate::output::Csv;
 use crate::run::record::{RunError, io_err};
@@ -120,10 +120,23 @@ impl LawPath {
 }
 
 /// Runs the virtual bending test on `scene`'s strand and writes `DIR/bending.csv` and
-/// `DIR/summary.json`; `progress` receives each measured point.
+/// `DIR/summary.json`; `progress` receives each measured point. The contacts' normal penalty
+/// follows the number of layers ([`NormalPenalty::ByLayers`]).
 pub fn run_bending(
     scene: &Scene,
     opts: &BendingOptions,
+    progress: &mut dyn FnMut(&BendingPoint, f64),
+) -> Result<BendingSummary, RunError> {
+    run_bending_with_penalty(scene, opts, NormalPenalty::ByLayers, progress)
+}
+
+/// [`run_bending`] with the contacts' normal penalty `penalty`: e.g. the penetration rule on
+/// a strand of several layers, whose frictionless test at a low tension (0.1 N) converges
+/// under that rule and not under the strain-relief penalty (Multilayer page).
+pub fn run_bending_with_penalty(
+    scene: &Scene,
+    opts: &BendingOptions,
+    penalty: NormalPenalty,
     progress: &mut dyn FnMut(&BendingPoint, f64),
 ) -> Result<BendingSummary, RunError> {
     let strand = &scene.strand;
@@ -194,6 +207,7 @@ pub fn run_bending(
     }
     let contact = ContactOptions {
         penetration: scene.models.fine.map_or(1e-3, |f| f.penetration),
+        normal_penalty: penalty,
         ..ContactOptions::default()
     };
     let test = BendingTest {

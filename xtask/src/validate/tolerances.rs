@@ -19,7 +19,7 @@ use anyhow::{Context, bail};
 use serde::{Deserialize, Serialize, de::DeserializeOwned};
 
 /// Names of the checks a tolerance entry may list.
-pub const CHECK_NAMES: [&str; 8] = [
+pub const CHECK_NAMES: [&str; 9] = [
     "equivalent-vs-elastica",
     "traditional-vs-elastica",
     "tension-vs-elastica",
@@ -28,6 +28,7 @@ pub const CHECK_NAMES: [&str; 8] = [
     "time-step-order",
     "golden",
     "equivalent-vs-fine",
+    "fine-bending",
 ];
 
 /// Configuration distance limits (m) between two centrelines at equal material coordinate.
@@ -213,6 +214,36 @@ pub struct GoldenTol {
     pub quick: Option<bool>,
 }
 
+/// The frictionless virtual bending test of the scene's strand (`strand_scene::run_bending`
+/// with the penetration rule) at two meshes: the fine model's M / kappa against the sum of the
+/// thin-rod K_min of the core and every wire (Costello's wire stiffness), and the section
+/// law's moment at the same strain and curvature against the fine one.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct FineBendingTol {
+    /// Axial tension of the test (N).
+    pub tension: f64,
+    /// The one imposed curvature (1/m).
+    pub curvature: f64,
+    /// Strand length in pitches (at least 3).
+    pub pitches: usize,
+    /// Two meshes in segments per pitch, coarse then fine; the change between them is the
+    /// finer one's mesh error.
+    pub segments_per_pitch: Vec<usize>,
+    /// Largest |K / K_min - 1| at the finer mesh plus the mesh error.
+    pub k_min: f64,
+    /// Largest |M_law / M - 1| at the finer mesh plus the change of that ratio between the
+    /// meshes.
+    pub law: f64,
+    /// Largest change of M / kappa between the meshes, relative to the finer one.
+    pub mesh: f64,
+    /// Why these limits.
+    pub why: String,
+    /// Run this check in `--quick`.
+    #[serde(default)]
+    pub quick: Option<bool>,
+}
+
 /// A check of a scene with its tolerance.
 #[derive(Debug, Clone, PartialEq)]
 pub enum CheckSpec {
@@ -232,6 +263,8 @@ pub enum CheckSpec {
     Golden(GoldenTol),
     /// Equivalent model against the fine model.
     EquivalentVsFine(DistanceTol),
+    /// Frictionless fine bending against the thin-rod K_min and the section law.
+    FineBending(FineBendingTol),
 }
 
 impl CheckSpec {
@@ -246,6 +279,7 @@ impl CheckSpec {
             CheckSpec::TimeStepOrder(_) => "time-step-order",
             CheckSpec::Golden(_) => "golden",
             CheckSpec::EquivalentVsFine(_) => "equivalent-vs-fine",
+            CheckSpec::FineBending(_) => "fine-bending",
         }
     }
 
@@ -259,6 +293,7 @@ impl CheckSpec {
             CheckSpec::ConvergenceOrder(t) => t.quick,
             CheckSpec::TimeStepOrder(t) => t.quick,
             CheckSpec::Golden(t) => t.quick,
+            CheckSpec::FineBending(t) => t.quick,
         }
     }
 
@@ -273,6 +308,7 @@ impl CheckSpec {
             CheckSpec::ConvergenceOrder(t) => &t.why,
             CheckSpec::TimeStepOrder(t) => &t.why,
             CheckSpec::Golden(t) => &t.why,
+            CheckSpec::FineBending(t) => &t.why,
         }
     }
 }
@@ -380,6 +416,7 @@ impl Tolerances {
                     "time-step-order" => CheckSpec::TimeStepOrder(typed(&scene, name, v)?),
                     "golden" => CheckSpec::Golden(typed(&scene, name, v)?),
                     "equivalent-vs-fine" => CheckSpec::EquivalentVsFine(typed(&scene, name, v)?),
+                    "fine-bending" => CheckSpec::FineBending(typed(&scene, name, v)?),
                     _ => unreachable!("names checked above"),
                 };
                 validate_spec(&scene, &spec)?;
@@ -489,6 +526,23 @@ fn validate_spec(scene: &str, spec: &CheckSpec) -> anyhow::Result<()> {
             positive(t.position, &at("position"))?;
             positive(t.energy, &at("energy"))?;
         }
+        CheckSpec::FineBending(t) => {
+            positive(t.tension, &at("tension"))?;
+            positive(t.curvature, &at("curvature"))?;
+            positive(t.k_min, &at("k_min"))?;
+            positive(t.law, &at("law"))?;
+            positive(t.mesh, &at("mesh"))?;
+            if t.pitches < 3 {
+                bail!("{}: must be at least 3, got {}", at("pitches"), t.pitches);
+            }
+            let n = &t.segments_per_pitch;
+            if n.len() != 2 || n[0] < 4 || n[1] <= n[0] {
+                bail!(
+                    "{}: must be two meshes, coarse then fine, each at least 4, got {n:?}",
+                    at("segments_per_pitch")
+                );
+            }
+        }
     }
     Ok(())
 }
@@ -553,6 +607,29 @@ mod tests {
         let bad = GOOD.replace("\"why\": \"integrator\"", "\"why\": \" \"");
         let e = Tolerances::parse(&bad, &scenes()).unwrap_err().to_string();
         assert!(e.contains("b.checks.energy-balance.why"), "{e}");
+    }
+
+    /// The fine bending check needs two meshes, coarse then fine.
+    #[test]
+    fn fine_bending_meshes_are_checked() {
+        let entry = |meshes: &str| {
+            format!(
+                r#"{{ "a": {{ "checks": {{ "fine-bending": {{ "tension": 0.1, "curvature": 0.1,
+                "pitches": 3, "segments_per_pitch": {meshes}, "k_min": 1e-2, "law": 1e-2,
+                "mesh": 2e-3, "why": "issue" }} }} }}, "b": {{ "checks": {{}} }} }}"#
+            )
+        };
+        let t = Tolerances::parse(&entry("[8, 16]"), &scenes()).unwrap();
+        assert_eq!(t.scenes["a"].checks[0].name(), "fine-bending");
+        for bad in ["[16, 8]", "[8]", "[2, 8]"] {
+            let e = Tolerances::parse(&entry(bad), &scenes())
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.contains("a.checks.fine-bending.segments_per_pitch"),
+                "{bad}: {e}"
+            );
+        }
     }
 
     #[test]
