@@ -94,8 +94,8 @@ enum Command {
     },
     /// Virtual bending test of the scene's strand with the fine model: pulled to a tension,
     /// then bent along arcs of growing curvature; writes `DIR/bending.csv` (measured moment
-    /// and stiffness beside the scene's section law at the same strain and curvature) and
-    /// `DIR/summary.json`.
+    /// and stiffness beside the scene's section law at the same strain and curvature),
+    /// `DIR/summary.json` and the two moment-curvature curves, `DIR/bending.png`/`.svg`.
     Bend {
         /// Scene file: its `strand` and `law` are used, and `models.fine.penetration`, which on
         /// a `1+m` strand sets the contacts' normal penalty (the wire sinks by that fraction of
@@ -317,7 +317,43 @@ fn bend(path: &std::path::Path, opts: strand_scene::BendingOptions) -> anyhow::R
             ml / k / s.k_max
         );
     }
-    say!("wrote {}", opts.out.join("bending.csv").display());
+    // The fine curve and the law's at the fine model's measured curvatures, from straight.
+    let from_zero = |i: usize| -> Vec<f64> {
+        std::iter::once(0.0)
+            .chain(s.points.iter().map(|p| p[i]))
+            .collect()
+    };
+    let (x, fine, law) = (from_zero(0), from_zero(1), from_zero(2));
+    let chart = strand_plot::Chart {
+        title: format!(
+            "{}: virtual bending test at T = {} N, {} segments per pitch",
+            s.scene, s.tension, s.segments_per_pitch
+        ),
+        x_label: "curvature (1/m)".into(),
+        y_label: "moment (N m)".into(),
+        series: vec![
+            strand_plot::Series::xy("fine model", &x, &fine, strand_plot::Mark::Front, 0),
+            strand_plot::Series::xy(
+                format!("section law `{}`", s.law),
+                &x,
+                &law,
+                strand_plot::Mark::Dashed,
+                1,
+            ),
+        ],
+        ..Default::default()
+    };
+    strand_plot::register_fonts();
+    let files = strand_plot::save(&chart, &opts.out, "bending")?;
+    say!(
+        "wrote {} and {}",
+        opts.out.join("bending.csv").display(),
+        files
+            .iter()
+            .map(|f| f.display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
     Ok(())
 }
 

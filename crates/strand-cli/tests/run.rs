@@ -212,3 +212,37 @@ fn bend_refuses_counts_it_cannot_build() {
         assert!(err.contains("--pitches") && err.contains(says), "{err}");
     }
 }
+
+/// `strand bend` draws the fine and the law's moment against curvature beside `bending.csv`
+/// (a one-layer strand, short: 3 pitches of 8 segments, one load reversal).
+#[test]
+fn bend_draws_its_curve() {
+    let out = std::env::temp_dir().join(format!("strand-bend-plot-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let o = Command::new(env!("CARGO_BIN_EXE_strand"))
+        .args([
+            "bend",
+            "validation/vs-fine-30deg.json",
+            "--tension",
+            "0.1",
+            "--curvatures",
+            "0.5,-0.5",
+            "--pitches",
+            "3",
+            "--segments-per-pitch",
+            "8",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (header, rows) = csv(&out.join("bending.csv"));
+    assert!(header.iter().any(|h| h == "law_moment") && rows.len() == 2);
+    for f in ["bending.png", "bending.svg"] {
+        let len = std::fs::metadata(out.join(f)).unwrap().len();
+        assert!(len > 1000, "{f}: {len} bytes");
+    }
+    std::fs::remove_dir_all(out).unwrap();
+}
