@@ -7,7 +7,9 @@
 //! * [`segment`]: rigid cylinders and their poses; [`so3`]: rotation helpers.
 //! * [`chain`]: a wire laid as a segment chain; [`joint`]: the joint springs.
 //! * [`model`]: wires, supports, gravity, state, loads and energies.
-//! * [`statics`]: Newton-Raphson static equilibrium; [`dynamics`]: symplectic time stepping;
+//! * [`statics`]: Newton-Raphson static equilibrium; [`mod@settle`]: static equilibrium with
+//!   contacts by damped motion and Newton; [`pseudo_transient`]: implicit pseudo-time steps
+//!   to equilibrium; [`dynamics`]: symplectic time stepping;
 //!   [`motion`]: moving supports and rigid initial velocities.
 //! * [`contact`]: wire-to-core contact (penalty and Cundall-Strack friction with history),
 //!   added to a model by [`FineModel::add_contacts`]; [`interlayer`]: wire-to-wire contact
@@ -42,6 +44,7 @@ pub mod joint;
 pub mod model;
 pub mod motion;
 pub mod penalty;
+pub mod pseudo_transient;
 pub mod segment;
 pub mod settle;
 pub mod so3;

@@ -59,9 +59,16 @@
 //! reaches at the tip; the motion goes on in short stretches and Newton is tried again from
 //! each, which on the Fig. 7 strand lands within 1e-6 m of the limit the motion itself
 //! reaches after another 0.9 s.
+//!
+//! Nor can an implicit continuation with friction ([`SettledOptions::pseudo_transient`], off
+//! by default; [`crate::pseudo_transient`]): without friction it takes over from the motion
+//! at 100 or 1000 times the allowance and lands on the motion's equilibrium, with friction it
+//! stalls and the motion goes on from the handover state as without it (the same result, bit
+//! for bit).
 
 use crate::dynamics::Integrator;
 use crate::model::{FineModel, ModelState};
+use crate::pseudo_transient::{PseudoTransientOptions, PseudoTransientReport, pseudo_transient};
 use crate::spectrum::lanczos_highest_frequency;
 use crate::statics::{
     Scales, StaticError, StaticOptions, StaticReport, residual_norms, scales, solve_static,
@@ -240,6 +247,9 @@ struct DampedMotion {
     rest_gamma: Option<f64>,
     sc: Scales,
     check: u64,
+    /// The motion is at rest when the residual's largest ratio to the allowance falls to
+    /// this (1, or the continuation's handover ratio).
+    at_rest: f64,
 }
 
 impl DampedMotion {
@@ -268,6 +278,7 @@ impl DampedMotion {
             rest_gamma: options.rest_damping_rate,
             sc,
             check: options.check_every.max(1) as u64,
+            at_rest: 1.0,
         }
     }
 
@@ -298,7 +309,7 @@ impl DampedMotion {
                 });
             }
             progress(state, self.int.time, ratio);
-            if self.int.load_factor >= 1.0 && ratio <= 1.0 {
+            if self.int.load_factor >= 1.0 && ratio <= self.at_rest {
                 return Ok((true, ratio, residual));
             }
         }
@@ -361,6 +372,7 @@ fn settle_motion(
     model: &FineModel,
     state: &mut ModelState,
     options: &SettleOptions,
+    at_rest: f64,
     progress: &mut dyn FnMut(&ModelState, f64, f64),
 ) -> Result<(DampedMotion, SettleReport), SettleError> {
     let start = state.clone();
@@ -371,6 +383,7 @@ fn settle_motion(
             .time_step
             .unwrap_or_else(|| settle_time_step(model, state, safety));
         let mut motion = DampedMotion::start(model, state, options, dt);
+        motion.at_rest = at_rest;
         let max_steps = options
             .max_steps
             .map_or(u64::MAX, |n| n.saturating_sub(discarded));
@@ -423,7 +436,7 @@ pub fn settle(
     progress: &mut dyn FnMut(&ModelState, f64, f64),
 ) -> Result<SettleReport, SettleError> {
     let model = motion_model(model, options);
-    settle_motion(&model, state, options, progress).map(|(_, report)| report)
+    settle_motion(&model, state, options, 1.0, progress).map(|(_, report)| report)
 }
 
 /// Controls of [`solve_settled`].
@@ -441,6 +454,11 @@ pub struct SettledOptions {
     /// Simulated time the motion may go on after the settle before the settled state is
     /// taken as the result (s).
     pub retry_time: f64,
+    /// Hand the motion over to a pseudo-transient continuation
+    /// ([`crate::pseudo_transient`]) at the options' handover ratio, then polish; `None`
+    /// (default): the motion goes on to the settle's tolerance. If the continuation or the
+    /// polish after it fails, the motion goes on from the handover state as without it.
+    pub pseudo_transient: Option<PseudoTransientOptions>,
 }
 
 impl Default for SettledOptions {
@@ -455,6 +473,7 @@ impl Default for SettledOptions {
             },
             retry_interval: 0.02,
             retry_time: 0.5,
+            pseudo_transient: None,
         }
     }
 }
@@ -475,6 +494,8 @@ pub struct SettledReport {
     pub tolerance: f64,
     /// Final scaled residual `max(|F| / F_ref, |T| / (F_ref l_ref))` (-).
     pub residual: f64,
+    /// The pseudo-transient continuation, if one ran.
+    pub pseudo_transient: Option<PseudoTransientReport>,
 }
 
 /// Static equilibrium under the model's gravity from the rest state in `state`: damped
@@ -491,7 +512,64 @@ pub fn solve_settled(
     progress: &mut dyn FnMut(&ModelState, f64, f64),
 ) -> Result<SettledReport, SettleError> {
     let moving = motion_model(model, &options.settle);
-    let (mut motion, mut settled) = settle_motion(&moving, state, &options.settle, progress)?;
+    let handover = options
+        .pseudo_transient
+        .map_or(1.0, |p| p.handover.max(1.0));
+    let (mut motion, mut settled) =
+        settle_motion(&moving, state, &options.settle, handover, progress)?;
+    let mut continuation = None;
+    if let Some(pt) = &options.pseudo_transient {
+        let handed = state.clone();
+        let masses: Vec<(f64, f64)> = moving
+            .wires
+            .iter()
+            .flat_map(|w| w.chain.segments.iter())
+            .map(|seg| (seg.mass, seg.transverse_inertia.max(seg.axial_inertia)))
+            .collect();
+        let h0 = 1.0 / motion.gamma.max(f64::MIN_POSITIVE);
+        let report = pseudo_transient(model, state, pt, &motion.sc, &masses, h0);
+        continuation = Some(report);
+        if report.converged
+            && let Ok(p) = solve_static(model, state, &options.polish)
+        {
+            return Ok(SettledReport {
+                settle: settled,
+                polish: Some(p),
+                attempts: 1,
+                iterations: p.iterations,
+                tolerance: options.polish.tolerance,
+                residual: p.residual,
+                pseudo_transient: continuation,
+            });
+        }
+        // The motion goes on from the handover state to the settle's tolerance.
+        state.clone_from(&handed);
+        motion.at_rest = 1.0;
+        let budget = options.settle.max_steps.unwrap_or(u64::MAX);
+        let (rest, ratio, residual) =
+            motion.run(&moving, state, options.settle.max_time, budget, progress)?;
+        if !rest {
+            return Err(if motion.int.steps >= budget {
+                SettleError::StepLimit {
+                    steps: motion.int.steps + settled.discarded_steps,
+                    time_step: motion.int.dt,
+                    time: motion.int.time,
+                    residual,
+                    ratio,
+                }
+            } else {
+                SettleError::NotSettled {
+                    time: motion.int.time,
+                    residual,
+                    ratio,
+                }
+            });
+        }
+        settled = SettleReport {
+            discarded_steps: settled.discarded_steps,
+            ..motion.report(ratio, residual)
+        };
+    }
     let give_up = settled.time + options.retry_time;
     let mut saved = state.clone();
     let (mut attempts, mut iterations) = (0, 0);
@@ -506,6 +584,7 @@ pub fn solve_settled(
                     iterations: iterations + p.iterations,
                     tolerance: options.polish.tolerance,
                     residual: p.residual,
+                    pseudo_transient: continuation,
                 });
             }
             Err(e) => {
@@ -529,6 +608,7 @@ pub fn solve_settled(
                 iterations,
                 tolerance: options.settle.tolerance,
                 residual: settled.residual,
+                pseudo_transient: continuation,
             });
         }
         // The motion goes on from the state it stopped at (momenta included).

@@ -214,7 +214,7 @@ fn dot_loads(loads: &[WireLoads], delta: &[f64]) -> f64 {
     w
 }
 
-fn apply_step(base: &ModelState, delta: &[f64], alpha: f64, out: &mut ModelState) {
+pub(crate) fn apply_step(base: &ModelState, delta: &[f64], alpha: f64, out: &mut ModelState) {
     let mut s = 0;
     for (wb, wo) in base.wires.iter().zip(out.wires.iter_mut()) {
         for (pb, po) in wb.poses.iter().zip(wo.poses.iter_mut()) {

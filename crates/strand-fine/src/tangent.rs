@@ -42,6 +42,8 @@ impl ElementTangent {
 /// A contact taken as closed, at a state: its point on the wire's axis and the core segment
 /// paired with it.
 struct ClosedContact<'a> {
+    /// Index of the wire and of the contact in the wire's list.
+    index: (usize, usize),
     contact: &'a ContactPoint,
     /// Pose of the wire segment that carries the contact.
     wire: &'a Pose,
@@ -187,8 +189,41 @@ impl FineModel {
     /// aside), closer than [`FineModel::contact_bound_tangents`], which puts `max(k_n, k_t)`
     /// in every direction at the wire's axis.
     pub fn contact_stick_tangents(&self, state: &ModelState) -> Vec<ElementTangent> {
+        let mut out = self.stick_tangents_where(state, |_, _| true);
+        // Wire-to-wire links: the isotropic bound.
+        out.extend(self.link_bound_tangents(state));
+        out
+    }
+
+    /// Tangents of the joints and of the wire-to-core contacts `closed(wire, contact)`
+    /// (indices as in [`ModelState::contacts`]) taken stuck, as in
+    /// [`FineModel::contact_stick_tangents`], at `state`, with the wire-to-wire links'
+    /// consistent tangents: the elastic tangent of friction, which a contact that goes on
+    /// slipping does not have but one that sticks again does (the continuation of
+    /// [`crate::pseudo_transient`] builds its steps on it).
+    pub fn elastic_tangents(
+        &self,
+        state: &ModelState,
+        closed: impl Fn(usize, usize) -> bool,
+    ) -> Vec<ElementTangent> {
+        let mut out = self.joint_tangents(state);
+        out.extend(self.stick_tangents_where(state, closed));
+        out.extend(self.link_tangents(state));
+        out
+    }
+
+    /// [`FineModel::contact_stick_tangents`] of the wire-to-core contacts `keep(wire,
+    /// contact)`.
+    fn stick_tangents_where(
+        &self,
+        state: &ModelState,
+        keep: impl Fn(usize, usize) -> bool,
+    ) -> Vec<ElementTangent> {
         let core = &self.wires[0].chain;
-        let mut out = self.closed_contact_tangents(state, |c| {
+        self.closed_contact_tangents(state, |c| {
+            if !keep(c.index.0, c.index.1) {
+                return None;
+            }
             let q =
                 contact::closest_on_axis(&c.point, c.core, core.segments[c.core_segment].length);
             let d = c.point - q;
@@ -203,10 +238,7 @@ impl FineModel {
             let spring = n * n.transpose() * (law.normal_stiffness - law.tangential_stiffness)
                 + Matrix3::identity() * law.tangential_stiffness;
             Some(b.transpose() * spring * b)
-        });
-        // Wire-to-wire links: the isotropic bound.
-        out.extend(self.link_bound_tangents(state));
-        out
+        })
     }
 
     /// The blocks `stiffness` gives for every contact closed at `state`, each on its wire
@@ -220,18 +252,20 @@ impl FineModel {
         let core = &self.wires[0].chain;
         let core_poses = &state.wires[0].poses;
         let mut out = Vec::with_capacity(self.contact_count());
-        for ((w, s), (hist, &off)) in self
+        for (i, ((w, s), (hist, &off))) in self
             .wires
             .iter()
             .zip(&state.wires)
             .zip(state.contacts.iter().zip(&offsets))
+            .enumerate()
         {
-            for (cp, h) in w.contacts.iter().zip(hist) {
+            for (k, (cp, h)) in w.contacts.iter().zip(hist).enumerate() {
                 let wire = &s.poses[cp.segment];
                 let p = wire.point(&cp.offset);
                 let j =
                     contact::nearest_core_segment(core_poses, &core.segments, &p, h.core_segment);
                 let closed = ClosedContact {
+                    index: (i, k),
                     contact: cp,
                     wire,
                     point: p,

@@ -9,6 +9,7 @@
 
 use nalgebra::Vector3;
 use strand_core::{Strand, StrandSpec};
+use strand_fine::pseudo_transient::PseudoTransientOptions;
 use strand_fine::{
     ContactOptions, Discretisation, FineModel, ModelState, SettledOptions, Support, solve_settled,
 };
@@ -115,4 +116,70 @@ fn with_friction_the_fast_settle_meets_the_residual_of_the_models_own_loads() {
         r <= 1e-4,
         "scaled residual {r:.3e} (tolerance met {tol:.0e})"
     );
+}
+
+/// The damped motion handed over to the pseudo-transient continuation at 100 times the
+/// settle's allowance.
+fn continued() -> SettledOptions {
+    SettledOptions {
+        pseudo_transient: Some(PseudoTransientOptions::default()),
+        ..SettledOptions::default()
+    }
+}
+
+#[test]
+fn without_friction_the_continuation_lands_on_the_unique_equilibrium() {
+    let m = strand_model(0.0);
+    let mut state = m.rest_state();
+    let r = solve_settled(&m, &mut state, &continued(), &mut |_, _, _| {}).unwrap();
+    let (motion, _, motion_steps) = settled(&m, &SettledOptions::default());
+    let (a, b) = (tip(&m, &state), tip(&m, &motion));
+    let drop = -b.y;
+    println!(
+        "continuation after {} steps: {:?}; the motion alone {motion_steps} steps; tips {a:?} \
+         / {b:?}: {:.3e} m apart",
+        r.settle.steps,
+        r.pseudo_transient,
+        (a - b).norm()
+    );
+    let pt = r.pseudo_transient.expect("the continuation ran");
+    assert!(
+        pt.converged,
+        "the continuation reached the settle's tolerance"
+    );
+    assert_eq!(r.tolerance, 1e-9, "polished by Newton");
+    // The bound of `without_friction_the_fast_settle_lands_on_the_unique_equilibrium`: both
+    // states within 1e-9 of the weight on every segment.
+    assert!(
+        (a - b).norm() <= 1e-7 * drop,
+        "tips {:.3e} m apart, beyond 1e-7 of the drop {drop:.3e} m",
+        (a - b).norm()
+    );
+    assert!(scaled_residual(&m, &state) <= 1e-8);
+    assert!(
+        r.settle.steps < motion_steps,
+        "{} steps, the motion alone {motion_steps}",
+        r.settle.steps
+    );
+}
+
+#[test]
+fn with_friction_the_continuation_meets_the_residual_of_the_models_own_loads() {
+    let m = strand_model(0.3);
+    let mut state = m.rest_state();
+    let r = solve_settled(&m, &mut state, &continued(), &mut |_, _, _| {}).unwrap();
+    let res = scaled_residual(&m, &state);
+    println!(
+        "{} steps, continuation {:?}, Newton {} iterations; scaled residual {res:.3e}",
+        r.settle.steps, r.pseudo_transient, r.iterations
+    );
+    assert!(res <= 1e-4, "scaled residual {res:.3e}");
+    // A continuation that stalls hands back the state it started from, and the motion goes on
+    // from there as it would have without it: the default path's result, bit for bit.
+    if !r.pseudo_transient.expect("the continuation ran").converged {
+        let (motion, _, motion_steps) = settled(&m, &SettledOptions::default());
+        assert_eq!(r.settle.steps, motion_steps);
+        assert_eq!(tip(&m, &state), tip(&m, &motion));
+        assert_eq!(state.wires, motion.wires);
+    }
 }

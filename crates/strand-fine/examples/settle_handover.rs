@@ -1,0 +1,87 @@
+//! The Fig. 7 fine statics (Table 1 strand, 0.4 m, clamped, gravity G m/s^2 along -y, 77
+//! segments a wire) with the damped motion handed over to a pseudo-transient continuation
+//! when the residual falls to HANDOVER times the settle's allowance, first pseudo step H0
+//! (s): `cargo run --release -p strand-fine --example settle_handover -- G HANDOVER [H0]`;
+//! HANDOVER 0: the default settle (no continuation). With `FRICTION=0` the contacts are
+//! frictionless; `LENGTH` (m) and `SEGMENTS` (a wire) change the strand; `PTC_STEPS` (60),
+//! `GROWTH` (4), `COMMIT=1` and `ELASTIC=1` set the continuation's options. Prints the explicit steps, the continuation's steps, the Newton polish, the
+//! tip and the CPU time of the process.
+
+use nalgebra::Vector3;
+use strand_core::{Strand, StrandSpec};
+use strand_fine::pseudo_transient::PseudoTransientOptions;
+use strand_fine::{
+    ContactOptions, Discretisation, FineModel, SettledOptions, Support, solve_settled,
+};
+
+fn cpu_seconds() -> f64 {
+    // utime + stime of this process, in clock ticks (fields 14 and 15 of /proc/self/stat).
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    let fields: Vec<&str> = stat
+        .rsplit(')')
+        .next()
+        .unwrap_or("")
+        .split_whitespace()
+        .collect();
+    let ticks = |i: usize| {
+        fields
+            .get(i)
+            .and_then(|f| f.parse::<f64>().ok())
+            .unwrap_or(0.0)
+    };
+    (ticks(11) + ticks(12)) / 100.0
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let arg = |i: usize, d: f64| args.get(i).map_or(d, |s| s.parse().unwrap());
+    let (g, handover) = (arg(1, 8.0), arg(2, 100.0));
+    // `LENGTH` (m) and `SEGMENTS` (a wire) change the strand (default 0.4 m, 77).
+    let env = |k: &str, d: f64| std::env::var(k).map_or(d, |v| v.parse().unwrap());
+    let segments = env("SEGMENTS", 77.0) as usize;
+    let strand = Strand::new(StrandSpec::paper(env("LENGTH", 0.4), 2.0e8, 7801.0)).unwrap();
+    let mut m = FineModel::from_strand(
+        &strand,
+        Discretisation {
+            core_segments: segments,
+            wire_segments: segments,
+        },
+        Support::Clamped,
+        Support::Free,
+    );
+    m.gravity = Vector3::new(0.0, -g, 0.0);
+    let mut contact = ContactOptions::default();
+    if std::env::var("FRICTION").is_ok_and(|v| v == "0") {
+        contact.friction = Some(0.0);
+    }
+    m.add_contacts(&strand, &contact);
+    let mut opts = SettledOptions::default();
+    if handover > 0.0 {
+        opts.pseudo_transient = Some(PseudoTransientOptions {
+            handover,
+            initial_step: args.get(3).map(|s| s.parse().unwrap()),
+            commit: std::env::var("COMMIT").is_ok_and(|v| v == "1"),
+            elastic_friction: std::env::var("ELASTIC").is_ok_and(|v| v == "1"),
+            growth: std::env::var("GROWTH").map_or(4.0, |v| v.parse().unwrap()),
+            max_steps: env("PTC_STEPS", 60.0) as usize,
+        });
+    }
+    let mut state = m.rest_state();
+    let r = solve_settled(&m, &mut state, &opts, &mut |_, _, _| {}).unwrap();
+    let tip = *m.core_centreline(&state).last().unwrap();
+    println!(
+        "g {g} handover {handover}: {} steps of {:.4e} s, {:.3} s; continuation {:?}; Newton {} \
+         it in {} attempts, residual {:.2e}, tip ({:.10}, {:.10}, {:.10}) [{:.1} s CPU]",
+        r.settle.steps,
+        r.settle.time_step,
+        r.settle.time,
+        r.pseudo_transient,
+        r.iterations,
+        r.attempts,
+        r.residual,
+        tip.x,
+        tip.y,
+        tip.z,
+        cpu_seconds()
+    );
+}
