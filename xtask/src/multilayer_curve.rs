@@ -14,6 +14,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::Context;
+use strand_core::SlipPressure;
 use strand_scene::{BendingOptions, Scene, run_bending};
 
 use crate::validate::repo_root;
@@ -21,16 +22,21 @@ use crate::validate::repo_root;
 /// Options of `cargo xtask multilayer-curve`.
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct MultilayerCurveArgs {
-    /// Only 100 N at 8 and 12 segments per pitch.
+    /// Only 100 N at 12 and 16 segments per pitch.
     #[arg(long)]
     pub quick: bool,
     /// Folder of the runs' outputs [default: target/multilayer-curve].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-    /// Also write the table into docs/book/src/multilayer.md (block `multilayer-curve`); full
-    /// study only.
+    /// Also write the table into docs/book/src/multilayer.md (block `multilayer-curve`, or
+    /// `multilayer-curve-NAME` with `--slip-pressure NAME`); full study only.
     #[arg(long)]
     pub update_docs: bool,
+    /// The law's contact pressure of the friction limits (`section.slip_pressure`: `accumulated`,
+    /// `sc5`, `two_faces`, `own_layer`) instead of the scene's; the fine runs do not depend on
+    /// it.
+    #[arg(long, value_name = "NAME")]
+    pub slip_pressure: Option<String>,
 }
 
 /// The scene of the test.
@@ -38,7 +44,7 @@ const SCENE: &str = "examples/steel-1x19-swing.json";
 /// Tensions (N).
 const TENSIONS: [f64; 2] = [100.0, 1000.0];
 /// Segments per pitch, coarse to fine.
-const MESHES: [usize; 3] = [8, 12, 16];
+const MESHES: [usize; 3] = [12, 16, 20];
 /// The curvature path (1/m): loading to 0.05, reversal to -0.05, reloading to 0.05.
 const CURVATURES: [f64; 9] = [0.0125, 0.025, 0.05, 0.02, -0.02, -0.05, -0.02, 0.02, 0.05];
 /// Labels of the path's points.
@@ -191,11 +197,24 @@ pub fn run(args: &MultilayerCurveArgs) -> anyhow::Result<bool> {
     }
     let t0 = Instant::now();
     let root = repo_root();
-    let scene = Scene::load(&root.join(SCENE)).with_context(|| SCENE.to_string())?;
+    let mut scene = Scene::load(&root.join(SCENE)).with_context(|| SCENE.to_string())?;
+    let block = match &args.slip_pressure {
+        Some(name) => {
+            scene.section.slip_pressure = SlipPressure::from_name(name).with_context(|| {
+                let names: Vec<&str> = SlipPressure::ALL.iter().map(|p| p.name()).collect();
+                format!(
+                    "--slip-pressure {name}: expected one of {}",
+                    names.join(", ")
+                )
+            })?;
+            format!("multilayer-curve-{name}")
+        }
+        None => "multilayer-curve".to_string(),
+    };
     let out = args
         .out
         .clone()
-        .unwrap_or_else(|| root.join("target").join("multilayer-curve"));
+        .unwrap_or_else(|| root.join("target").join(&block));
     let (tensions, meshes): (&[f64], &[usize]) = if args.quick {
         (&TENSIONS[..1], &MESHES[..2])
     } else {
@@ -233,11 +252,7 @@ pub fn run(args: &MultilayerCurveArgs) -> anyhow::Result<bool> {
     std::fs::write(out.join("report.md"), &text)
         .with_context(|| format!("writing {}", out.join("report.md").display()))?;
     if args.update_docs {
-        crate::book::pages::update(
-            crate::book::pages::Page::Multilayer,
-            "multilayer-curve",
-            &text,
-        )?;
+        crate::book::pages::update(crate::book::pages::Page::Multilayer, &block, &text)?;
     }
     if !failed.is_empty() {
         eprintln!("multilayer-curve failed: {}", failed.join("; "));

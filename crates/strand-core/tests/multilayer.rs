@@ -139,7 +139,7 @@ fn curvature_pair(
 /// T_j + c_j sum_{k>j} b_k T_k), T_k(0) = F_k = E_k A_k cos^2(alpha_k), with lambda_j = mu
 /// sin(alpha_j) and, for the exact line load, c_j = mu R_j / (n_j sin alpha_j), b_k = n_k
 /// sin^2(alpha_k) / R_k; for SC5, c_j = mu r_wj / sin(alpha_j), b_k = sin^2(alpha_k) / r_wk;
-/// for the own layer alone, c_j = 0.
+/// for the own layer alone, c_j = 0; with friction on both faces, c_j twice the exact one.
 fn rk4_gain(
     s: &Strand,
     pressure: SlipPressure,
@@ -159,6 +159,10 @@ fn rk4_gain(
             match pressure {
                 SlipPressure::OwnLayer => (0.0, 0.0),
                 SlipPressure::Sc5 => (mu * r / sa, sa * sa / r),
+                SlipPressure::TwoFaces => (
+                    2.0 * mu * h.radius / (h.wires() as f64 * sa),
+                    h.wires() as f64 * sa * sa / h.radius,
+                ),
                 _ => (
                     mu * h.radius / (h.wires() as f64 * sa),
                     h.wires() as f64 * sa * sa / h.radius,
@@ -521,7 +525,11 @@ fn outer_layers_raise_the_inner_friction_limit() {
     })
     .unwrap();
     let own = law(&s, LawKind::Continuous, SlipPressure::OwnLayer);
-    for p in [SlipPressure::Accumulated, SlipPressure::Sc5] {
+    for p in [
+        SlipPressure::Accumulated,
+        SlipPressure::Sc5,
+        SlipPressure::TwoFaces,
+    ] {
         let acc = law(&s, LawKind::Continuous, p);
         for t in [0.1, 0.5, 1.0, FRAC_PI_2] {
             let (a, o) = (
@@ -560,6 +568,73 @@ proptest! {
         prop_assert_eq!(
             strand_core::StickStiffness::Bonded.factor(&s, 0),
             strand_core::StickStiffness::Bonded.factor(&one, 0)
+        );
+    }
+}
+
+/// Friction on both faces (`two_faces`) on the 1+6+12 strand: the inner layer's limit against
+/// the closed form of its two-layer system, dT_1/dtheta = +-(lambda_1 T_1 + 2 a T_2), T_2 =
+/// F_2 exp(+-lambda_2 theta), a = mu (R_1 / (n_1 sin alpha_1)) n_2 sin^2(alpha_2) / R_2:
+/// T_1 - F_1 = F_1 (exp(s lambda_1 theta) - 1) + 2 a F_2 (exp(s lambda_2 theta) - exp(s
+/// lambda_1 theta)) / (lambda_2 - lambda_1) with s = +-1, compared through its ratio to the
+/// own-layer limit (the force scale cancels). The closed form loses at most
+/// log10(1 / (theta |lambda_2 - lambda_1|)) < 4 digits to the difference of exponentials at
+/// theta >= 0.1: tolerance 1e-10 relative.
+#[test]
+fn two_faces_inner_limit_matches_its_closed_form() {
+    let wire = |d: f64| WireSpec {
+        diameter: d,
+        material: Material {
+            youngs_modulus: 2e11,
+            poisson_ratio: 0.3,
+            density: 7850.0,
+        },
+    };
+    let layer = |m: usize, deg: f64, direction| LayerSpec {
+        wires: m,
+        wire: wire(3e-3),
+        lay_angle: f64::to_radians(deg),
+        phase: 0.0,
+        direction,
+    };
+    let s = Strand::new(StrandSpec {
+        length: 1.0,
+        core: wire(3.3e-3),
+        layers: vec![
+            layer(6, 8.0, LayDirection::Right),
+            layer(12, 12.0, LayDirection::Left),
+        ],
+        friction: 0.3,
+    })
+    .unwrap();
+    let two = law(&s, LawKind::Continuous, SlipPressure::TwoFaces);
+    let own = law(&s, LawKind::Continuous, SlipPressure::OwnLayer);
+    let (l1, l2) = (&s.layers()[0], &s.layers()[1]);
+    let mu = 0.3;
+    let (s1, s2) = (l1.lay_angle().sin(), l2.lay_angle().sin());
+    let (lam1, lam2) = (mu * s1, mu * s2);
+    let a = mu * (l1.radius / (6.0 * s1)) * 12.0 * s2 * s2 / l2.radius;
+    // F_k per unit strain: E A_w cos^2(alpha_k); the wires are alike, so E A_w cancels.
+    let (f1, f2) = (l1.lay_angle().cos().powi(2), l2.lay_angle().cos().powi(2));
+    for theta in [0.1, 0.4, 1.0, FRAC_PI_2] {
+        let lim = two.friction_limit(0, 1e-3, theta);
+        let base = own.friction_limit(0, 1e-3, theta);
+        for (side, sign) in [(0, 1.0), (1, -1.0)] {
+            let (e1, e2) = ((sign * lam1 * theta).exp(), (sign * lam2 * theta).exp());
+            let t1 = f1 * e1 + 2.0 * a * f2 * (e2 - e1) / (lam2 - lam1);
+            let gain = sign * (t1 - f1) / f1;
+            let capstan = sign * (e1 - 1.0);
+            let expected = gain / capstan;
+            let got = lim[side] / base[side];
+            assert!(
+                (got / expected - 1.0).abs() <= 1e-10,
+                "side {side}, theta {theta}: {got} against {expected}"
+            );
+        }
+        // The outer layer has one face in contact: the capstan limit.
+        assert_eq!(
+            two.friction_limit(1, 1e-3, theta),
+            own.friction_limit(1, 1e-3, theta)
         );
     }
 }

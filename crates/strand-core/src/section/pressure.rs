@@ -16,6 +16,7 @@
 //! dT_j/dtheta = lambda_j T_j + sum_{k>j} a_jk T_k,   lambda_j = mu sin(alpha_j),
 //! a_jk = mu (R_j / (n_j sin alpha_j)) n_k sin^2(alpha_k) / R_k        (accumulated)
 //! a_jk = mu (r_wj / sin alpha_j) sin^2(alpha_k) / r_wk                 (sc5)
+//! a_jk = 2 mu (R_j / (n_j sin alpha_j)) n_k sin^2(alpha_k) / R_k       (two_faces)
 //! ```
 //!
 //! The SC5 form replaces the layer's n_k / R_k by its close-packing value pi / r_wk (and
@@ -38,6 +39,15 @@
 //! the series reaches round-off in fewer than 40 terms; the loop stops when a term no longer
 //! changes the sum. The property tests compare it with a Runge-Kutta integration of the system
 //! built from the formulas above.
+//!
+//! Both faces (`two_faces`): the layers outside press a wire of layer j down on its outer face
+//! as well, with the same line load that its inner face passes on to the layer beneath. Where
+//! layer j slips against the layer outside it too (it slips along its own helix, the layer
+//! outside along another one, so their relative slip at a crossing has a component along the
+//! wire), friction acts on both faces: mu times the own line load plus twice the load from
+//! outside, the accumulated a_jk doubled. The fine 1+6+12 bending test measures this on the
+//! inner layer (`multilayer.md`, "Which layer carries the excess"). The outermost layer has one
+//! face in contact and keeps the capstan gain.
 //!
 //! Where the contact type enters: the line load is the same total force whether a layer
 //! touches the one beneath along lines or at crossing points, so the friction limit per unit
@@ -66,14 +76,19 @@ pub enum SlipPressure {
     Accumulated,
     /// Own tension plus the layers outside with the close-packing n_k / R_k = pi / r_wk (SC5).
     Sc5,
+    /// Own tension plus twice the layers outside (exact n_k / R_k): friction on the inner face
+    /// (own tension plus the load from outside) and on the outer face (the load from outside),
+    /// for a layer that slips against both its neighbours (module docs).
+    TwoFaces,
 }
 
 impl SlipPressure {
     /// Every form, in the order of the documentation.
-    pub const ALL: [SlipPressure; 3] = [
+    pub const ALL: [SlipPressure; 4] = [
         SlipPressure::OwnLayer,
         SlipPressure::Accumulated,
         SlipPressure::Sc5,
+        SlipPressure::TwoFaces,
     ];
 
     /// Name as used in scene files (`section.slip_pressure`).
@@ -82,6 +97,7 @@ impl SlipPressure {
             SlipPressure::OwnLayer => "own_layer",
             SlipPressure::Accumulated => "accumulated",
             SlipPressure::Sc5 => "sc5",
+            SlipPressure::TwoFaces => "two_faces",
         }
     }
 
@@ -129,7 +145,16 @@ impl PressureSystem {
                         mu * (l[j].spec.wire.radius() / sj) * sk2 / l[k].spec.wire.radius()
                     }
                     _ => {
-                        mu * (l[j].radius / (l[j].wires() as f64 * sj)) * l[k].wires() as f64 * sk2
+                        let faces = if variant == SlipPressure::TwoFaces {
+                            2.0
+                        } else {
+                            1.0
+                        };
+                        faces
+                            * mu
+                            * (l[j].radius / (l[j].wires() as f64 * sj))
+                            * l[k].wires() as f64
+                            * sk2
                             / l[k].radius
                     }
                 };
