@@ -280,7 +280,9 @@ pub fn nearest_core_segment<P: Placement>(
 
 /// The local search of [`nearest_core_segment`]: the segment found and the projection of
 /// `point` on its axis from its centre (m), `(point - c) . t`, which [`closest_on_axis`]
-/// would compute again.
+/// would compute again. Inlined: with the panic of its unreachable end it is no longer
+/// inlined by itself, and the call was 0.4 % of a settle step.
+#[inline(always)]
 fn core_search<P: Placement>(
     core: &[P],
     segments: &[Segment],
