@@ -217,12 +217,16 @@ fn newton_iteration(c: &mut Criterion) {
         let mut pts = vec![PointState::default(); b.points()];
         g.bench_function("forces without books", |bch| {
             bch.iter(|| {
-                b.internal_unbooked(black_box(&q), &slip, &mut force, None, &mut pts)
+                b.internal_unbooked(black_box(&q), &slip, &mut [], &mut force, None, &mut pts)
                     .unwrap()
             })
         });
         g.bench_function("books of the accepted iterate", |bch| {
-            bch.iter(|| b.book_points(&slip, &mut trial, black_box(&mut pts)))
+            bch.iter(|| {
+                let mut ev = Default::default();
+                b.book_points(&slip, &mut trial, black_box(&mut pts), &mut ev);
+                ev
+            })
         });
         let mut solver = BandSolver::default();
         let beta_p = 1.0 / (0.25 * 1e-6);

@@ -141,6 +141,90 @@ fn spatial_tangent_matches_finite_differences() {
     }
 }
 
+/// The spatial element's Newton iterations leave out the hysteretic law's slip work
+/// (`internal_unbooked`), and `book_points` at the same iterate completes it: the forces,
+/// iteration matrix, trial state (slip, bending direction, frames), points, energy and
+/// slipping wires are the booked evaluation's bit for bit, and so is the slip work once
+/// booked, from a committed state whose bending direction differs from the iterate's (the
+/// trapezoid's limit at the step's start).
+#[test]
+fn spatial_forces_without_slip_work_then_books_equal_a_booked_evaluation() {
+    use strand_ancf::beam::{PointState, Tangent};
+    let s = strand(0.4, 2.0e8, 7801.0);
+    let b = beam(
+        &s,
+        LawKind::Hysteretic,
+        ElementKind::Spatial,
+        3,
+        Support::Clamped,
+    );
+    let n = b.coords();
+    let tangent = Tangent::Iteration { unloading: 0.25 };
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    for (k, turn) in [(3.0, 1.2), (6.0, -0.7)] {
+        // Committed at another bent state turned about the strand axis: another bending
+        // direction, and wires slipped there.
+        let mut slip = b.initial_state();
+        let mut trial = slip.clone();
+        let rot = nalgebra::Rotation3::from_axis_angle(&nalgebra::Vector3::x_axis(), turn);
+        let mut other = bent(&b, 0.8 * k);
+        for c in other.chunks_exact_mut(3) {
+            let v = rot * nalgebra::Vector3::new(c[0], c[1], c[2]);
+            c.copy_from_slice(v.as_slice());
+        }
+        let mut f = vec![0.0; n];
+        b.internal(&other, &slip, &mut trial, &mut f, None, None)
+            .unwrap();
+        slip.copy_from_slice(&trial);
+        let q = bent(&b, k);
+        let (mut trial_a, mut trial_b) = (slip.clone(), vec![7.0; slip.len()]);
+        let (mut fa, mut fb) = (vec![0.0; n], vec![0.0; n]);
+        let (mut pa, mut pb) = (
+            vec![PointState::default(); b.points()],
+            vec![PointState::default(); b.points()],
+        );
+        let mut ta = BandMatrix::zeros(b.dofs(), b.bandwidth(), b.bandwidth());
+        let mut tb = ta.clone();
+        let booked = b
+            .internal_with(
+                &q,
+                &slip,
+                &mut trial_a,
+                &mut fa,
+                Some((&mut ta, tangent)),
+                Some(&mut pa),
+            )
+            .unwrap();
+        let mut ev = b
+            .internal_unbooked(
+                &q,
+                &slip,
+                &mut trial_b,
+                &mut fb,
+                Some((&mut tb, tangent)),
+                &mut pb,
+            )
+            .unwrap();
+        assert_eq!(ev.slip_work, 0.0, "k {k}: left out");
+        b.book_points(&slip, &mut trial_b, &mut pb, &mut ev);
+        assert!(
+            booked.slipping > 0 && booked.slip_work > 0.0,
+            "k {k}: {booked:?}"
+        );
+        assert_eq!(bits(&fa), bits(&fb), "k {k}: forces");
+        assert_eq!(ta, tb, "k {k}: iteration matrix");
+        assert_eq!(bits(&trial_a), bits(&trial_b), "k {k}: trial state");
+        assert_eq!(pa, pb, "k {k}: points");
+        assert_eq!(
+            ev.energy.to_bits(),
+            booked.energy.to_bits(),
+            "k {k}: energy"
+        );
+        assert_eq!(ev.slip_work.to_bits(), booked.slip_work.to_bits());
+        assert_eq!(ev.slipping, booked.slipping);
+    }
+}
+
 #[test]
 fn spatial_rigid_motion_gives_no_force() {
     let s = strand(0.4, 2.0e8, 7801.0);

@@ -317,6 +317,41 @@ proptest! {
         }
     }
 
+    /// The vector form's Newton evaluation without the slip work (`vector_unbooked`) is the
+    /// full evaluation bit for bit but for the slip work, and the books of the accepted
+    /// iterate (`vector_slip_work`, from the trial state it wrote) are the full evaluation's
+    /// slip work bit for bit: from a committed state left by bending in another direction at
+    /// another strain (the trapezoid's limit of the step's start), both slip limits, one
+    /// layer or pitch samples.
+    #[test]
+    fn vector_books_apart_are_the_full_evaluations(
+        s in strand(), eps in 1e-4..1e-2f64, eps0 in 0.0..1e-2f64, x in 0.0..1.0f64,
+        u in 0.0..20.0f64, dir in 0.0..(2.0 * PI), u0 in 0.0..20.0f64,
+        dir0 in 0.0..(2.0 * PI),
+        kind in prop::sample::select(vec![LawKind::Continuous, LawKind::Hysteretic]),
+        limit in prop::sample::select(SlipLimit::ALL.to_vec()),
+        samples in prop::sample::select(vec![1usize, 3]),
+    ) {
+        let options = SectionOptions { slip_limit: limit, pitch_samples: samples, ..Default::default() };
+        let law = SectionLaw::with_options(&s, kind, &options);
+        let st = law.station(x);
+        let n = law.state_len();
+        let mut slip = vec![0.0; n];
+        let k0 = u0 * curvature_scale(&s, eps0);
+        law.vector(&st, eps0, [k0 * dir0.cos(), k0 * dir0.sin()], &vec![0.0; n], &mut slip);
+        let k = u * curvature_scale(&s, eps);
+        let kv = [k * dir.cos(), k * dir.sin()];
+        let (mut t_full, mut t_iter) = (vec![0.0; n], vec![7.0; n]);
+        let full = law.vector(&st, eps, kv, &slip, &mut t_full);
+        let iter = law.vector_unbooked(&st, eps, kv, &slip, &mut t_iter);
+        prop_assert_eq!(iter, SectionResponse { slip_work: 0.0, ..full });
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        prop_assert_eq!(bits(&t_iter), bits(&t_full));
+        let books = law.vector_slip_work(&st, eps, kv, &slip, &t_iter);
+        prop_assert_eq!(books.to_bits(), full.slip_work.to_bits(),
+            "{} against {}", books, full.slip_work);
+    }
+
     /// The vector form with kappa_y = 0: its z components (moment, dM_z/dkappa_z, dM_z/deps),
     /// energy, slip count and trial state are the planar law's bit for bit, also from a
     /// committed slip state; its y moment is the wires' forces times their y levers.

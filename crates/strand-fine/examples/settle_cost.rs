@@ -6,26 +6,15 @@
 //! (`RAYON_NUM_THREADS` sets the threads). Prints the steps, the step and a fingerprint of
 //! the state (the sum of the positions' bits, equal for equal states).
 
-use nalgebra::Vector3;
-use strand_core::{Strand, StrandSpec};
-use strand_fine::{ContactOptions, Discretisation, FineModel, SettleOptions, Support, settle};
+mod common;
+
+use strand_fine::{SettleOptions, settle};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let arg = |i: usize, d: f64| args.get(i).map_or(d, |s| s.parse().unwrap());
     let (g, steps) = (arg(1, 8.0), arg(2, 2000.0) as u64);
-    let strand = Strand::new(StrandSpec::paper(0.4, 2.0e8, 7801.0)).unwrap();
-    let mut m = FineModel::from_strand(
-        &strand,
-        Discretisation {
-            core_segments: 77,
-            wire_segments: 77,
-        },
-        Support::Clamped,
-        Support::Free,
-    );
-    m.gravity = Vector3::new(0.0, -g, 0.0);
-    m.add_contacts(&strand, &ContactOptions::default());
+    let m = common::fig7_model(g, 77);
     let mut state = m.rest_state();
     let opts = SettleOptions {
         max_steps: Some(steps),

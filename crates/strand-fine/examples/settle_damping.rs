@@ -8,12 +8,9 @@
 //! study measures how much of the settle's length that sets, and how far a faster path lands
 //! from the default one with friction.
 
-use nalgebra::Vector3;
-use strand_core::{Strand, StrandSpec};
-use strand_fine::{
-    ContactOptions, Discretisation, FineModel, SettledOptions, Support, damping_and_ramp,
-    solve_settled,
-};
+mod common;
+
+use strand_fine::{SettledOptions, damping_and_ramp, solve_settled};
 
 fn cpu_seconds() -> f64 {
     // utime + stime of this process, in clock ticks (fields 14 and 15 of /proc/self/stat).
@@ -39,18 +36,7 @@ fn main() {
     let (g, factor) = (arg(1, 8.0), arg(2, 1.0));
     // Optional: the damping rate from the ramp's end on, as a factor on the default rate.
     let rest_factor = args.get(3).map(|s| s.parse::<f64>().unwrap());
-    let strand = Strand::new(StrandSpec::paper(0.4, 2.0e8, 7801.0)).unwrap();
-    let mut m = FineModel::from_strand(
-        &strand,
-        Discretisation {
-            core_segments: 77,
-            wire_segments: 77,
-        },
-        Support::Clamped,
-        Support::Free,
-    );
-    m.gravity = Vector3::new(0.0, -g, 0.0);
-    m.add_contacts(&strand, &ContactOptions::default());
+    let m = common::fig7_model(g, 77);
     let mut opts = SettledOptions::default();
     let (gamma, ramp) = damping_and_ramp(&m, &opts.settle);
     opts.settle.damping_rate = Some(factor * gamma);
@@ -61,16 +47,9 @@ fn main() {
     let tip = *m.core_centreline(&state).last().unwrap();
     println!(
         "g {g} gamma {:.4} 1/s ({factor} x {gamma:.4}; after the ramp {rest_factor:?} x), ramp \
-         {ramp:.4} s: {} steps of {:.4e} s, \
-         {:.3} s, Newton {} it in {} attempts, residual {:.2e}, tip ({:.10}, {:.10}, {:.10}) \
-         [{:.1} s CPU]",
+         {ramp:.4} s: {}, tip ({:.10}, {:.10}, {:.10}) [{:.1} s CPU]",
         factor * gamma,
-        r.settle.steps,
-        r.settle.time_step,
-        r.settle.time,
-        r.iterations,
-        r.attempts,
-        r.residual,
+        common::settled_line(&r),
         tip.x,
         tip.y,
         tip.z,

@@ -8,30 +8,16 @@
 //! A sixth argument prints the stable step for isotropic inertias 1, 2, 4 and 16 times the
 //! transverse one. Prints the steps, the Newton polish and the tip.
 
-use nalgebra::Vector3;
-use strand_core::{Strand, StrandSpec};
-use strand_fine::{
-    ContactOptions, Discretisation, FineModel, SettledOptions, Support, settle_time_step,
-    solve_settled,
-};
+mod common;
+
+use strand_fine::{FineModel, SettledOptions, settle_time_step, solve_settled};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let arg = |i: usize, d: f64| args.get(i).map_or(d, |s| s.parse().unwrap());
     let (g, safety, axial) = (arg(1, 8.0), arg(2, 0.75), arg(3, 1.0));
     let n = arg(4, 77.0) as usize;
-    let strand = Strand::new(StrandSpec::paper(0.4, 2.0e8, 7801.0)).unwrap();
-    let mut m = FineModel::from_strand(
-        &strand,
-        Discretisation {
-            core_segments: n,
-            wire_segments: n,
-        },
-        Support::Clamped,
-        Support::Free,
-    );
-    m.gravity = Vector3::new(0.0, -g, 0.0);
-    m.add_contacts(&strand, &ContactOptions::default());
+    let mut m = common::fig7_model(g, n);
     let rest = m.rest_state();
     // AXIAL > 0: the axial inertia times AXIAL; AXIAL < 0: both rotational inertias the
     // transverse one times |AXIAL| (the settle's own isotropic inertia off).
@@ -64,14 +50,8 @@ fn main() {
     let r = solve_settled(&m, &mut state, &opts, &mut |_, _, _| {}).unwrap();
     let tip = *m.core_centreline(&state).last().unwrap();
     println!(
-        "g {g} safety {safety} axial x{axial}: {} steps of {:.4e} s, {:.3} s, Newton {} it in {} \
-         attempts, residual {:.2e}, tip ({:.10}, {:.10}) [{:.1} s wall]",
-        r.settle.steps,
-        r.settle.time_step,
-        r.settle.time,
-        r.iterations,
-        r.attempts,
-        r.residual,
+        "g {g} safety {safety} axial x{axial}: {}, tip ({:.10}, {:.10}) [{:.1} s wall]",
+        common::settled_line(&r),
         tip.x,
         tip.y,
         t0.elapsed().as_secs_f64()

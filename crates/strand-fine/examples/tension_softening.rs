@@ -14,10 +14,11 @@
 //! shear springs 100 times stiffer, penetration 1e-5 of the wire diameter (else the default
 //! test: pressure shared by axial stiffness, physical springs, penetration 1e-3).
 
-use strand_core::{
-    BaseStiffness, Material, Strand, StrandSpec, WireSpec, stretched_min_bending_stiffness,
-};
-use strand_fine::{BendingTest, Pressure};
+#[path = "../tests/common/mod.rs"]
+mod fixtures;
+
+use strand_core::{BaseStiffness, stretched_min_bending_stiffness};
+use strand_fine::BendingTest;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -25,29 +26,14 @@ fn main() {
     let (t, kappa) = (arg(1, 1.0), arg(2, 0.5));
     let (spp, pitches) = (arg(3, 24.0) as usize, arg(4, 6.0) as usize);
     let cell = args.get(5).is_some_and(|a| a == "cell");
-    let material = Material {
-        youngs_modulus: 5e7,
-        poisson_ratio: 0.3,
-        density: 7800.0,
-    };
-    let mut spec = StrandSpec::paper(0.05, 5e7, 7800.0);
-    spec.core = WireSpec {
-        diameter: 2.2e-3,
-        material,
-    };
-    spec.layers[0].wire.diameter = 1.5e-3;
-    spec.layers[0].lay_angle = 30f64.to_radians();
-    spec.friction = 0.0;
-    let strand = Strand::new(spec).unwrap();
+    let strand = fixtures::vs_fine_30deg();
     let k_min = strand.min_bending_stiffness(BaseStiffness::Costello);
     let eps = t / strand.axial_stiffness();
-    let mut test = BendingTest::frictionless(pitches, spp, t, kappa);
-    if cell {
-        test.pressure = Pressure::Core;
-        test.contact.penetration = 1e-5;
-        test.wire_springs.shear = 100.0;
-        test.core_springs.shear = 100.0;
-    }
+    let test = if cell {
+        fixtures::thin_rod_cell(pitches, spp, t, kappa, 1e-5)
+    } else {
+        BendingTest::frictionless(pitches, spp, t, kappa)
+    };
     let (curve, model, state) = test.run_with_state(&strand).unwrap();
     let p = curve.last().unwrap();
     let scale = k_min * p.curvature;

@@ -278,15 +278,17 @@ pub fn nearest_core_segment<P: Placement>(
     core_search(core, segments, point, guess).0
 }
 
-/// The local search of [`nearest_core_segment`]: the segment found and, when the search
-/// ended on it (not by running out of moves), the projection of `point` on its axis from
-/// its centre (m), `(point - c) . t`, which [`closest_on_axis`] would compute again.
+/// The local search of [`nearest_core_segment`]: the segment found and the projection of
+/// `point` on its axis from its centre (m), `(point - c) . t`, which [`closest_on_axis`]
+/// would compute again. Inlined: with the panic of its unreachable end it is no longer
+/// inlined by itself, and the call was 0.4 % of a settle step.
+#[inline(always)]
 fn core_search<P: Placement>(
     core: &[P],
     segments: &[Segment],
     point: &Vector3<f64>,
     guess: usize,
-) -> (usize, Option<f64>) {
+) -> (usize, f64) {
     let mut j = guess.min(core.len() - 1);
     let mut last_move = 0i8;
     for _ in 0..core.len() {
@@ -300,10 +302,13 @@ fn core_search<P: Placement>(
             j -= 1;
             last_move = -1;
         } else {
-            return (j, Some(s));
+            return (j, s);
         }
     }
-    (j, None)
+    unreachable!(
+        "every move of the core search goes the first one's way, at most len - 1 of them: it \
+         ends on a segment it projected on within len projections"
+    )
 }
 
 /// Closest point (m) to `p` on the axis of the core segment at `core` of length `length`.
@@ -495,12 +500,8 @@ pub fn evaluate_into<P: Placement>(
     let p = wire.point(&cp.offset);
     let (j, s) = core_search(core, core_segments, &p, history.core_segment);
     let (cj, length) = (&core[j], core_segments[j].length);
-    // The search's last projection is the one the closest point needs (the search always
-    // ends on a segment it projected on: it moves at most len - 1 times one way).
-    let q = match s {
-        Some(s) => on_axis(cj, length, s),
-        None => closest_on_axis(&p, cj, length),
-    };
+    // The search's last projection is the one the closest point needs.
+    let q = on_axis(cj, length, s);
     let anchor = &core[history.core_segment.min(core.len() - 1)];
     respond_into(
         &cp.law,

@@ -9,7 +9,9 @@ use strand_core::{
     BaseStiffness, BaseTension, LawKind, LayDirection, LayerSpec, Material, SectionLaw,
     SectionOptions, Strand, StrandSpec, WireSpec, stretched_min_bending_stiffness,
 };
-use strand_fine::{BendingTest, NormalPenalty, Pressure};
+use strand_fine::NormalPenalty;
+
+mod common;
 
 /// Soft material (E = 5e7 Pa, as `validation/vs-fine-30deg.json`): a few newtons are a
 /// strain of 1e-3.
@@ -61,19 +63,11 @@ fn env(k: &str, d: f64) -> f64 {
 
 /// M / kappa (N m^2) of the frictionless cell test at tension `t` (N).
 fn stiffness(s: &Strand, t: f64, pitches: usize, spp: usize, penetration: f64) -> f64 {
-    let mut test = BendingTest::frictionless(pitches, spp, t, env("K", 0.5));
-    test.pressure = Pressure::Core;
-    test.contact.penetration = penetration;
+    let mut test = common::thin_rod_cell(pitches, spp, t, env("K", 0.5), penetration);
     if env("RULE", 1.0) > 0.0 {
         test.contact.normal_penalty = NormalPenalty::Penetration;
     }
-    test.wire_springs.shear = 100.0;
-    test.core_springs.shear = 100.0;
-    test.run(s)
-        .expect("bending test")
-        .last()
-        .unwrap()
-        .secant_stiffness()
+    common::secant_stiffness(&test, s)
 }
 
 /// The fine strand's M / kappa (per deformed curvature) against the law's: K_min(eps) of the

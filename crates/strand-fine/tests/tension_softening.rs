@@ -5,43 +5,16 @@
 //! up as that cell: the lateral pressure on the core only ([`Pressure::Core`]: no load on the
 //! wires from outside), shear springs stiff (Kirchhoff wires), contacts nearly rigid.
 
-use strand_core::{
-    BaseStiffness, Material, Strand, StrandSpec, WireSpec, stretched_min_bending_stiffness,
-};
-use strand_fine::{BendingTest, Pressure};
+mod common;
 
-/// The `vs-fine-30deg` strand: core 2.2 mm, six 1.5 mm wires at 30 deg, E = 5e7 Pa,
-/// nu = 0.3, no friction.
-fn strand() -> Strand {
-    let material = Material {
-        youngs_modulus: 5e7,
-        poisson_ratio: 0.3,
-        density: 7800.0,
-    };
-    let mut spec = StrandSpec::paper(0.05, 5e7, 7800.0);
-    spec.core = WireSpec {
-        diameter: 2.2e-3,
-        material,
-    };
-    spec.layers[0].wire.diameter = 1.5e-3;
-    spec.layers[0].lay_angle = 30f64.to_radians();
-    spec.friction = 0.0;
-    Strand::new(spec).unwrap()
-}
+use strand_core::{BaseStiffness, Strand, stretched_min_bending_stiffness};
+
+use common::{secant_stiffness, thin_rod_cell, vs_fine_30deg as strand};
 
 /// M / kappa (N m^2) of the frictionless cell test at tension `t` (N): `pitches` pitches of
 /// `spp` segments, allowed penetration `penetration` (fraction of the wire diameter).
 fn stiffness(s: &Strand, t: f64, pitches: usize, spp: usize, penetration: f64) -> f64 {
-    let mut test = BendingTest::frictionless(pitches, spp, t, 0.5);
-    test.pressure = Pressure::Core;
-    test.contact.penetration = penetration;
-    test.wire_springs.shear = 100.0;
-    test.core_springs.shear = 100.0;
-    test.run(s)
-        .expect("bending test")
-        .last()
-        .unwrap()
-        .secant_stiffness()
+    secant_stiffness(&thin_rod_cell(pitches, spp, t, 0.5, penetration), s)
 }
 
 /// At T = 1 N (strain 1.87e-3) the fine strand's M / kappa is the thin-rod value of the

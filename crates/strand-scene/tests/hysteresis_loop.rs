@@ -18,17 +18,10 @@ mod section_loop;
 use common::csv_columns;
 use serde_json::json;
 use strand_core::{LawKind, SectionLaw};
-use strand_scene::{RunOptions, Scene, run_scene};
+use strand_scene::Scene;
 
 const L: f64 = 0.5;
 const ELEMENTS: usize = 2;
-
-/// Gauss-Legendre 3-point nodes and weights on [0, 1].
-const GAUSS3: [(f64, f64); 3] = [
-    (0.112_701_665_379_258_3, 5.0 / 18.0),
-    (0.5, 8.0 / 18.0),
-    (0.887_298_334_620_741_7, 5.0 / 18.0),
-];
 
 fn scene(probes: &[f64]) -> serde_json::Value {
     // Axial pull 5e-4 m (strain 1e-3, about 27 kN) over 0.1 s, held; then the end swings
@@ -60,28 +53,11 @@ fn scene(probes: &[f64]) -> serde_json::Value {
 
 #[test]
 fn a_cycled_section_closes_on_the_laws_loop_and_its_area_is_the_slip_work() {
-    let h = L / ELEMENTS as f64;
-    let points: Vec<(f64, f64)> = (0..ELEMENTS)
-        .flat_map(|e| GAUSS3.map(|(x, w)| ((e as f64 + x) * h, w * h)))
-        .collect();
+    let points = section_loop::gauss_points(ELEMENTS, L / ELEMENTS as f64);
     let probes: Vec<f64> = points.iter().map(|p| p.0).collect();
     let text = scene(&probes).to_string();
     let scene = Scene::parse(&text).unwrap();
-    let out = std::env::temp_dir().join(format!("strand-loop-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
-    let opts = RunOptions {
-        out: out.clone(),
-        vtk: false,
-    };
-    let s = run_scene(&scene, &opts, &mut |_, _| {}).unwrap();
-    assert!(!s[0].failed(), "{:?}", s[0].failure());
-    // A step cut in halves commits a state between two frames: with slip limits that change
-    // with the tension, the law's path would then differ from the frames'.
-    assert!(
-        s[0].warnings.iter().all(|w| !w.contains("cut")),
-        "no step was cut (each committed step is a frame): {:?}",
-        s[0].warnings
-    );
+    let out = section_loop::run_uncut(&scene, "strand-loop");
     let dir = out.join("equivalent");
     // The probes sit on the bending points (the rows of centerline.csv).
     let rows = csv_columns(&dir.join("centerline.csv"))["s"].clone();
@@ -103,13 +79,7 @@ fn a_cycled_section_closes_on_the_laws_loop_and_its_area_is_the_slip_work() {
         let c = csv_columns(&dir.join(format!("probe_{p}.csv")));
         let (t, tension) = (&c["t"], &c["tension"]);
         let st = law.station(s);
-        // The law's all-stick tangent (its largest): the slope of M(kappa) lies in
-        // [K_min, K_stick] along any path.
-        let mut scratch = vec![0.0; law.state_len()];
-        let zero = vec![0.0; law.state_len()];
-        let k_stick = law
-            .planar(&st, tension[1] / ea, 1e-9, &zero, &mut scratch)
-            .moment_curvature;
+        let k_stick = section_loop::stick_tangent(&law, &st, tension[1] / ea);
         // Drive the law through the probe's frames: the same moments, to round-off.
         let path = section_loop::drive(&law, &st, &c);
         total_slip_work += weight * path.work[t.len() - 1];

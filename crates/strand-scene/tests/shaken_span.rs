@@ -24,20 +24,13 @@ use std::path::Path;
 
 use common::csv_columns;
 use strand_core::{LawKind, SectionLaw};
-use strand_scene::{RunOptions, Scene, run_scene};
+use strand_scene::Scene;
 
 const ELEMENTS: usize = 400;
 /// Elements probed from the clamp (the first metre).
 const PROBED: usize = 8;
 /// The clamp's shaking frequency (Hz), as the example's motion table is written.
 const FREQUENCY: f64 = 9.675;
-
-/// Gauss-Legendre 3-point nodes and weights on [0, 1].
-const GAUSS3: [(f64, f64); 3] = [
-    (0.112_701_665_379_258_3, 5.0 / 18.0),
-    (0.5, 8.0 / 18.0),
-    (0.887_298_334_620_741_7, 5.0 / 18.0),
-];
 
 #[test]
 fn the_shaken_spans_loops_near_the_clamp_are_the_laws_and_their_area_is_the_slip_work() {
@@ -46,10 +39,7 @@ fn the_shaken_spans_loops_near_the_clamp_are_the_laws_and_their_area_is_the_slip
         .expect("the bundled example");
     let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
     let length = value["strand"]["length"].as_f64().unwrap();
-    let h = length / ELEMENTS as f64;
-    let points: Vec<(f64, f64)> = (0..PROBED)
-        .flat_map(|e| GAUSS3.map(|(x, w)| ((e as f64 + x) * h, w * h)))
-        .collect();
+    let points = section_loop::gauss_points(PROBED, length / ELEMENTS as f64);
     value["models"] = serde_json::json!({
         "equivalent": { "elements": ELEMENTS, "integration_points": 3 }
     });
@@ -61,19 +51,7 @@ fn the_shaken_spans_loops_near_the_clamp_are_the_laws_and_their_area_is_the_slip
         "the example writes a frame every step"
     );
     let scene = Scene::parse(&value.to_string()).unwrap();
-    let out = std::env::temp_dir().join(format!("strand-shaken-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
-    let opts = RunOptions {
-        out: out.clone(),
-        vtk: false,
-    };
-    let s = run_scene(&scene, &opts, &mut |_, _| {}).unwrap();
-    assert!(!s[0].failed(), "{:?}", s[0].failure());
-    assert!(
-        s[0].warnings.iter().all(|w| !w.contains("cut")),
-        "no step was cut (each committed step is a frame): {:?}",
-        s[0].warnings
-    );
+    let out = section_loop::run_uncut(&scene, "strand-shaken");
     let dir = out.join("equivalent");
     for entry in std::fs::read_dir(&dir).unwrap() {
         let path = entry.unwrap().path();
@@ -95,17 +73,7 @@ fn the_shaken_spans_loops_near_the_clamp_are_the_laws_and_their_area_is_the_slip
         let c = csv_columns(&dir.join(strand_scene::probe::file_name(s)));
         let t = &c["t"];
         let st = law.station(s);
-        let mut scratch = vec![0.0; law.state_len()];
-        let zero = vec![0.0; law.state_len()];
-        let k_stick = law
-            .planar(
-                &st,
-                c["tension"][t.len() - 1] / ea,
-                1e-9,
-                &zero,
-                &mut scratch,
-            )
-            .moment_curvature;
+        let k_stick = section_loop::stick_tangent(&law, &st, c["tension"][t.len() - 1] / ea);
         let path = section_loop::drive(&law, &st, &c);
         total_slip_work += weight * path.work[t.len() - 1];
         // The last period of the shaking: from the frame nearest one period before the end.

@@ -64,31 +64,40 @@ impl Beam {
         self.assemble(q, q, slip, trial, force, tangent, points, true)
     }
 
-    /// [`Self::internal_with`] without the books of the bending points: the forces (and the
-    /// iteration matrix, if asked) of a Newton iteration, which reads nothing else. The
-    /// returned energy holds only the axial points' and the hourglass term's, no trial state
-    /// is written, and `points` receive each bending point's strain, curvature and moment;
-    /// [`Self::book_points`] completes them at the iterate that is accepted. Planar elements
-    /// with a [`Tangent::Iteration`] or no matrix only (an error otherwise): with the
-    /// `continuous` and `hysteretic` laws the books are about half the work per wire.
+    /// [`Self::internal_with`] without the books of the bending points that a Newton
+    /// iteration does not read; [`Self::book_points`] completes them at the iterate that is
+    /// accepted. With a [`Tangent::Iteration`] or no matrix only (an error otherwise).
+    ///
+    /// * Planar elements leave out every book: the returned energy holds only the axial
+    ///   points' and the hourglass term's, `trial` is not written, and `points` receive each
+    ///   bending point's strain, curvature and moment. With the `continuous` and
+    ///   `hysteretic` laws the books are about half the work per wire.
+    /// * Spatial elements leave out the slip work alone (zero): it takes each slipping wire's
+    ///   friction limit at the committed bending direction, its capstan gains evaluated a
+    ///   second time ([`SectionLaw::vector_unbooked`]). The energy, the slipping wires, the
+    ///   points and `trial` (the law's trial state and the carried section frames) are those
+    ///   of [`Self::internal_with`] bit for bit: their per-wire terms come with the moment's,
+    ///   and summed apart from the axial points' the energy would change its rounding.
+    ///
+    /// [`SectionLaw::vector_unbooked`]: strand_core::SectionLaw::vector_unbooked
     pub fn internal_unbooked(
         &self,
         q: &[f64],
         slip: &[f64],
+        trial: &mut [f64],
         force: &mut [f64],
         tangent: Option<(&mut BandMatrix, Tangent)>,
         points: &mut [PointState],
     ) -> Result<Evaluation, BeamError> {
-        if self.spec.element != ElementKind::Planar
-            || tangent
-                .as_ref()
-                .is_some_and(|(_, t)| *t == Tangent::FrozenMeans)
+        if tangent
+            .as_ref()
+            .is_some_and(|(_, t)| *t == Tangent::FrozenMeans)
         {
             return Err(BeamError::Setup(
-                "forces without books are for planar elements with an iteration matrix".into(),
+                "forces without books are for an iteration matrix".into(),
             ));
         }
-        self.assemble(q, q, slip, &mut [], force, tangent, Some(points), false)
+        self.assemble(q, q, slip, trial, force, tangent, Some(points), false)
     }
 
     /// The forces and the chosen tangent with the neighbours' mean strains taken at `means_at`;
@@ -105,8 +114,7 @@ impl Beam {
         mut points: Option<&mut [PointState]>,
         books: bool,
     ) -> Result<Evaluation, BeamError> {
-        if books
-            && self.frame_state_per_point() > 0
+        if self.frame_state_per_point() > 0
             && (slip.len() != self.state_len() || trial.len() != self.state_len())
         {
             return Err(BeamError::Setup(format!(
@@ -162,7 +170,7 @@ impl Beam {
                     let qe = self.spatial_coords(q, e);
                     let k = want_k.then_some((&mut ks, kind));
                     let (f, ev, sym) =
-                        self.element_spatial(e, rule, &qe, &means, sl, tr, k, pts)?;
+                        self.element_spatial(e, rule, &qe, &means, sl, tr, k, pts, books)?;
                     for a in 0..12 {
                         force[e * nd + a] += f[a];
                     }
@@ -254,7 +262,7 @@ impl Beam {
                 let mut k = SpatialMatrix::zeros();
                 let qe = self.spatial_coords(q, e);
                 let tangent = Some((&mut k, Tangent::AllStick));
-                self.element_spatial(e, rule, &qe, m, &slip, &mut trial, tangent, None)?;
+                self.element_spatial(e, rule, &qe, m, &slip, &mut trial, tangent, None, true)?;
                 DMatrix::from_column_slice(12, 12, k.as_slice())
             }
         })

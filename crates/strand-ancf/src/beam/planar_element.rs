@@ -5,8 +5,8 @@ use nalgebra::{Vector2, Vector4};
 use strand_core::{PlanarMoment, PlanarResponse};
 
 use super::{
-    AXIAL_POINTS, Beam, BeamError, BendPoint, ElementRule, Evaluation, HOURGLASS, PointState,
-    Tangent, law_strain, strain_round_off,
+    AXIAL_POINTS, Beam, BeamError, BendPoint, ElementKind, ElementRule, Evaluation, HOURGLASS,
+    PointState, Tangent, law_strain, strain_round_off,
 };
 use crate::error::check_stretch;
 use crate::planar::{self, PlanarAxial, PlanarCoords, PlanarMatrix, PlanarPoint, PlanarVector};
@@ -315,19 +315,31 @@ impl Beam {
 }
 
 impl Beam {
-    /// The books of the bending points that [`Beam::internal_unbooked`] left out, at the
-    /// strains and curvatures it wrote to `points`: the section law at each of them from the
-    /// committed `slip`, its trial state into `trial` and its energy, slip work and
-    /// slipping wires into `points` and the returned [`Evaluation`] (bending points only;
-    /// add the unbooked evaluation's axial energy). The same values as a booked evaluation.
+    /// Completes `ev`, the evaluation [`Beam::internal_unbooked`] returned, with the books it
+    /// left out, at the strains and curvatures it wrote to `points`: the section law at each
+    /// bending point from the committed `slip`, its trial state into `trial`. The same values
+    /// as a booked evaluation ([`Beam::internal_with`]).
+    ///
+    /// Planar elements: the bending points' energy is added to `ev`'s (the sum's rounding
+    /// differs from the booked evaluation's by the order of its terms), their slip work and
+    /// slipping wires replace `ev`'s, and `points` and `trial` are written. Spatial elements:
+    /// the slip work alone replaces `ev`'s, summed as the booked evaluation sums it (bit for
+    /// bit), from the trial state the unbooked evaluation wrote
+    /// ([`SectionLaw::vector_slip_work`]: the friction limits of the wires whose slip changed
+    /// alone).
+    ///
+    /// [`SectionLaw::vector_slip_work`]: strand_core::SectionLaw::vector_slip_work
     pub fn book_points(
         &self,
         slip: &[f64],
         trial: &mut [f64],
         points: &mut [PointState],
-    ) -> Evaluation {
+        ev: &mut Evaluation,
+    ) {
         let ws = self.state_per_point();
+        let wl = self.law_state_per_point();
         let ea = self.law.axial_stiffness();
+        let spatial = self.spec.element == ElementKind::Spatial;
         let (sl, tl) = (slip.len(), trial.len());
         let mut sum = Evaluation::default();
         let mut p0 = 0;
@@ -338,23 +350,37 @@ impl Beam {
             let trial = &mut trial[s0.min(tl)..s1.min(tl)];
             let points = &mut points[p0..p0 + np];
             // Summed per element as in the element loop.
-            let mut ev = Evaluation::default();
+            let mut el = Evaluation::default();
             for (i, (bp, p)) in rule.bend.iter().zip(points.iter_mut()).enumerate() {
                 let (sl, tr) = (
                     &slip[i * ws..(i + 1) * ws],
                     &mut trial[i * ws..(i + 1) * ws],
                 );
                 let (eps, kappa) = (p.eps, p.kappa);
+                if spatial {
+                    // From the law's part of the states (before the section frame's), which
+                    // the unbooked evaluation wrote.
+                    let (sl, tr) = (&sl[..wl], &tr[..wl]);
+                    let w = self
+                        .law
+                        .vector_slip_work(&bp.station, eps, [p.kappa_y, kappa], sl, tr);
+                    el.slip_work += bp.qp.weight * w;
+                    continue;
+                }
                 let r = self.law.planar(&bp.station, eps, kappa, sl, tr);
                 // Finite: the unbooked evaluation checked this moment at these arguments.
-                record_planar_point(bp, eps, kappa, ea, &r, &mut ev, Some(p));
+                record_planar_point(bp, eps, kappa, ea, &r, &mut el, Some(p));
             }
             p0 += np;
-            sum.energy += ev.energy;
-            sum.slip_work += ev.slip_work;
-            sum.slipping += ev.slipping;
+            sum.energy += el.energy;
+            sum.slip_work += el.slip_work;
+            sum.slipping += el.slipping;
         }
-        sum
+        ev.slip_work = sum.slip_work;
+        if !spatial {
+            ev.energy += sum.energy;
+            ev.slipping = sum.slipping;
+        }
     }
 }
 

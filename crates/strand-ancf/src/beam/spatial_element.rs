@@ -3,6 +3,7 @@
 //! section law.
 
 use nalgebra::Matrix6;
+use strand_core::Station;
 
 use super::{
     AXIAL_POINTS, Beam, BeamError, ElementRule, Evaluation, HOURGLASS, PointState, Tangent,
@@ -17,7 +18,8 @@ impl Beam {
     /// curvature vector `(kappa_y, kappa_z)` in the section frame of every bending point and
     /// the vector form of the section law. `state` holds each bending point's committed slip
     /// state and section frame (see `beam::state`); the frame carried to the current tangent
-    /// is written to `trial` with the law's trial state.
+    /// is written to `trial` with the law's trial state. Without `books` the slip work is left
+    /// out (zero; see [`Beam::internal_unbooked`]), every other value the same.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn element_spatial(
         &self,
@@ -29,7 +31,15 @@ impl Beam {
         trial: &mut [f64],
         tangent: Option<(&mut SpatialMatrix, Tangent)>,
         mut points: Option<&mut [PointState]>,
+        books: bool,
     ) -> Result<(SpatialVector, Evaluation, bool), BeamError> {
+        let law = |st: &Station, eps, kappa, sl: &[f64], tr: &mut [f64]| {
+            if books {
+                self.law.vector(st, eps, kappa, sl, tr)
+            } else {
+                self.law.vector_unbooked(st, eps, kappa, sl, tr)
+            }
+        };
         let (mut tangent, kind) = match tangent {
             Some((t, kind)) => (Some(t), kind),
             None => (None, Tangent::FrozenMeans),
@@ -109,7 +119,7 @@ impl Beam {
                 let s2 = pt.second(&frame).map_err(kin)?;
                 SectionFrame::write_state(&s2.first.tangent, &s2.first.axes[1], ft);
                 kappa = s2.first.kappa;
-                r = self.law.vector(&bp.station, eps, kappa, sl, tr);
+                r = law(&bp.station, eps, kappa, sl, tr);
                 let mut dm_dkappa = r.moment_curvature;
                 if kind == Tangent::AllStick {
                     dm_dkappa = [[bp.stick, 0.0], [0.0, bp.stick]];
@@ -142,7 +152,7 @@ impl Beam {
                 let s1 = pt.first(&frame).map_err(kin)?;
                 SectionFrame::write_state(&s1.tangent, &s1.axes[1], ft);
                 kappa = s1.kappa;
-                r = self.law.vector(&bp.station, eps, kappa, sl, tr);
+                r = law(&bp.station, eps, kappa, sl, tr);
                 let local = s1.kappa_grad[0] * r.moment[0] + s1.kappa_grad[1] * r.moment[1];
                 spatial::add_gradient(&mut f, w, &bp.qp.row, &local);
             }

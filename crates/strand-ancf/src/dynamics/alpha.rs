@@ -93,7 +93,9 @@ struct AlphaWork {
     motion: f64,
     /// Whether the Newton iterations evaluate the forces without the bending points' books
     /// ([`Beam::internal_unbooked`]), which the accepted iterate's are then completed with:
-    /// for the planar element with a stick/slip law.
+    /// for the planar element with a stick/slip law, and for the spatial element with the
+    /// `hysteretic` law, whose slip work alone it leaves out (the only book of the spatial
+    /// element that costs more than the moment's own terms).
     unbooked: bool,
     /// Largest stiffness of a node of the step's exact iteration matrix, apart from the
     /// inertia term (N/m): Gershgorin row sums of the element matrices in length units over
@@ -130,7 +132,8 @@ impl AlphaWork {
     ) -> Option<Evaluation> {
         let k = tangent.map(|t| (&mut self.k, t));
         let ev = if self.unbooked {
-            beam.internal_unbooked(&st.q, &st.slip, &mut self.force, k, pts_new)
+            let trial = &mut self.trial;
+            beam.internal_unbooked(&st.q, &st.slip, trial, &mut self.force, k, pts_new)
         } else {
             beam.internal_with(
                 &st.q,
@@ -379,8 +382,8 @@ fn limits(
     }
 }
 
-/// Commits the accepted iterate `ev` of a step that took `iterations`: its books (for the
-/// planar element with a stick/slip law), the algorithmic acceleration, the slip state and the
+/// Commits the accepted iterate `ev` of a step that took `iterations`: its books (where the
+/// iterations left them out, [`AlphaWork::unbooked`]), the algorithmic acceleration, the slip state and the
 /// bending points, with the step's non-potential work.
 #[allow(clippy::too_many_arguments)]
 fn commit(
@@ -396,11 +399,8 @@ fn commit(
     let Parameters { am, af, .. } = *p;
     let nf = beam.dofs();
     if w.unbooked {
-        // The books of the accepted iterate: its trial state, energy and slip work.
-        let books = beam.book_points(&st.slip, &mut w.trial, pts_new);
-        ev.energy += books.energy;
-        ev.slip_work = books.slip_work;
-        ev.slipping = books.slipping;
+        // The books of the accepted iterate that the iterations left out.
+        beam.book_points(&st.slip, &mut w.trial, pts_new, &mut ev);
     }
     for i in 0..nf {
         st.alg[i] += (1.0 - af) / (1.0 - am) * (st.acc[i] - w.acc_pred[i]);
@@ -493,7 +493,10 @@ pub(super) fn generalized_alpha(
         mass: beam.spec().mass_per_length * beam.length(),
         motion: 0.0,
         energy: 0.0,
-        unbooked: !beam.law().is_linear() && beam.spec().element == ElementKind::Planar,
+        unbooked: match beam.spec().element {
+            ElementKind::Planar => !beam.law().is_linear(),
+            ElementKind::Spatial => beam.law().kind().has_state(),
+        },
         node_stiffness: {
             let l = beam.element_length();
             let law = beam.law();

@@ -892,6 +892,87 @@ impl SectionLaw {
         slip: &[f64],
         trial: &mut [f64],
     ) -> SectionResponse {
+        self.vector_with::<true>(st, eps, kappa, slip, trial)
+    }
+
+    /// [`Self::vector`] without the slip work (`slip_work` zero), every other value and the
+    /// trial state bit for bit: what a Newton iteration of the spatial element reads. The
+    /// slip work's trapezoid (module `slip_work`) takes each slipping wire's friction limit
+    /// at the step's start, its capstan gains at the committed bending direction, a second
+    /// evaluation of them per slipping wire that only the books of the accepted iterate need:
+    /// [`Self::vector`] there gives it.
+    pub fn vector_unbooked(
+        &self,
+        st: &Station,
+        eps: f64,
+        kappa: [f64; 2],
+        slip: &[f64],
+        trial: &mut [f64],
+    ) -> SectionResponse {
+        self.vector_with::<false>(st, eps, kappa, slip, trial)
+    }
+
+    /// The slip work (J/m) of [`Self::vector`] at `eps`, `kappa` from the committed state
+    /// `slip` to the trial state `trial` that [`Self::vector_unbooked`] (or [`Self::vector`])
+    /// wrote for the same arguments, bit for bit: the books of the accepted iterate that
+    /// the iterations left out. Both states are the station's whole state
+    /// ([`Self::state_len`] values); 0 for the laws without slip work.
+    ///
+    /// Only the wires whose slip changed book work, and only their friction limits are
+    /// evaluated, at the step's end and at its start (module `slip_work`). A wire that
+    /// sticks keeps its slip; one that slips books the trapezoid of the limit on the side its
+    /// trial force `k (e - s_old)` is on (the stretched side for a non-negative one, as the
+    /// slider decides), and a slip that did not change books nothing.
+    pub fn vector_slip_work(
+        &self,
+        st: &Station,
+        eps: f64,
+        kappa: [f64; 2],
+        slip: &[f64],
+        trial: &[f64],
+    ) -> f64 {
+        let n = st.wires.len();
+        if self.kind != LawKind::Hysteretic || self.layers.is_empty() {
+            return 0.0;
+        }
+        debug_assert!(slip.len() == self.state_len() && trial.len() == slip.len());
+        // The directions and the strain of `vector_with`'s full state.
+        let dir = BendingDirection::select(kappa, self.still(eps), &slip[n..], None);
+        let eps_old = self.committed_strain(n, slip, eps);
+        let dir_old = BendingDirection::stored(&slip[n..]).unwrap_or(dir);
+        let mut work = 0.0;
+        for (i, w) in st.wires.iter().enumerate() {
+            let ds = trial[i] - slip[i];
+            if ds == 0.0 {
+                continue;
+            }
+            let law = self.layers[w.layer];
+            let l = w.lever;
+            let stretched = law.k * (l[0] * kappa[0] + l[1] * kappa[1] - slip[i]) >= 0.0;
+            let side = usize::from(!stretched);
+            let gains = self.turning_gains(&law, dir.wire_angle(w.phase)).0;
+            let old = if dir_old.beta == dir.beta {
+                gains
+            } else {
+                self.turning_gains(&law, dir_old.wire_angle(w.phase)).0
+            };
+            let cap = law.cap_scale(eps).0 * gains[side];
+            work += slip_work::trapezoid(cap, law.cap_scale(eps_old).0 * old[side], ds);
+        }
+        work
+    }
+
+    /// [`Self::vector`], with the slip work where `SLIP_WORK`, else without it
+    /// ([`Self::vector_unbooked`]).
+    #[inline(always)]
+    fn vector_with<const SLIP_WORK: bool>(
+        &self,
+        st: &Station,
+        eps: f64,
+        kappa: [f64; 2],
+        slip: &[f64],
+        trial: &mut [f64],
+    ) -> SectionResponse {
         let (kb, dkb) = self.base_bending_at(eps);
         let mut r = SectionResponse {
             axial_force: self.axial_stiffness * eps,
@@ -933,11 +1014,13 @@ impl SectionLaw {
         // The step's start: the committed strain and the committed bending direction (the
         // present one where none is stored: no wire has slipped yet), for the slip work's
         // trapezoid (module `slip_work`).
-        let eps_old = self.committed_strain(n, slip, eps);
-        let dir_old = if full {
-            BendingDirection::stored(&slip[n..]).unwrap_or(dir)
-        } else {
-            dir
+        let (eps_old, dir_old) = match (SLIP_WORK, full) {
+            (false, _) => (eps, dir),
+            (true, true) => (
+                self.committed_strain(n, slip, eps),
+                BendingDirection::stored(&slip[n..]).unwrap_or(dir),
+            ),
+            (true, false) => (self.committed_strain(n, slip, eps), dir),
         };
         for (i, w) in st.wires.iter().enumerate() {
             let law = self.layers[w.layer];
@@ -946,6 +1029,9 @@ impl SectionLaw {
             let theta = dir.wire_angle(w.phase);
             let (gains, dtheta_n, slopes) = self.turning_gains(&law, theta);
             let old = |pos: bool| {
+                if !SLIP_WORK {
+                    return 0.0;
+                }
                 let g = if dir_old.beta == dir.beta {
                     gains
                 } else {
@@ -998,7 +1084,9 @@ impl SectionLaw {
             let cap_strain = (f.d_cap_pos * gains[0] - f.d_cap_neg * gains[1]) * dscale;
             r.energy += f.energy;
             r.energy_strain += f.d_energy_cap * cap_strain;
-            r.slip_work += f.slip_work;
+            if SLIP_WORK {
+                r.slip_work += f.slip_work;
+            }
             r.slipping += usize::from(f.state == WireState::Slip);
         }
         r

@@ -3,8 +3,55 @@
 //! balance of the section over an interval of frames.
 
 use std::collections::HashMap;
+use std::path::PathBuf;
 
 use strand_core::{PlanarResponse, SectionLaw, Station};
+use strand_scene::{RunOptions, Scene, run_scene};
+
+/// Gauss-Legendre 3-point nodes and weights on [0, 1].
+const GAUSS3: [(f64, f64); 3] = [
+    (0.112_701_665_379_258_3, 5.0 / 18.0),
+    (0.5, 8.0 / 18.0),
+    (0.887_298_334_620_741_7, 5.0 / 18.0),
+];
+
+/// The bending points of the first `elements` elements of length `h` (m) of three Gauss
+/// points each: material coordinate and quadrature weight (m).
+pub fn gauss_points(elements: usize, h: f64) -> Vec<(f64, f64)> {
+    (0..elements)
+        .flat_map(|e| GAUSS3.map(|(x, w)| ((e as f64 + x) * h, w * h)))
+        .collect()
+}
+
+/// Runs `scene` into a fresh folder `<temp>/<name>-<process id>` and checks that its first
+/// model did not fail and that no step was cut: a step cut in halves commits a state between
+/// two frames, and with slip limits that change with the tension the law's path would then
+/// differ from the frames'. Returns the folder.
+pub fn run_uncut(scene: &Scene, name: &str) -> PathBuf {
+    let out = std::env::temp_dir().join(format!("{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let opts = RunOptions {
+        out: out.clone(),
+        vtk: false,
+    };
+    let s = run_scene(scene, &opts, &mut |_, _| {}).unwrap();
+    assert!(!s[0].failed(), "{:?}", s[0].failure());
+    assert!(
+        s[0].warnings.iter().all(|w| !w.contains("cut")),
+        "no step was cut (each committed step is a frame): {:?}",
+        s[0].warnings
+    );
+    out
+}
+
+/// The law's all-stick tangent at `st` (N m^2), its largest, at strain `eps`: the slope of
+/// M(kappa) lies in [K_min, K_stick] along any path.
+pub fn stick_tangent(law: &SectionLaw, st: &Station, eps: f64) -> f64 {
+    let mut scratch = vec![0.0; law.state_len()];
+    let zero = vec![0.0; law.state_len()];
+    law.planar(st, eps, 1e-9, &zero, &mut scratch)
+        .moment_curvature
+}
 
 /// The law's path through a probe's frames: stored energy and accumulated slip work (J/m) at
 /// each frame, from zero at the first.
