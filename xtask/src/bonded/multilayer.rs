@@ -193,7 +193,8 @@ pub struct Measured {
     pub limit_error: f64,
     /// Rod model of the strand as one body, rigid bonds (N m^2).
     pub rod: f64,
-    /// The law's per-interface value K_min + sum_j f_j K_stick,j (N m^2), same idealisations.
+    /// The law's per-interface value K_min + sum_j f_j K_stick,j (N m^2), same idealisations
+    /// (the variant's bond radius on the first interface only).
     pub law: f64,
     pub k_max: f64,
     pub k_min: f64,
@@ -294,7 +295,12 @@ fn study(strand: &Strand, v: &Variant) -> anyhow::Result<Measured> {
     let rod = strand_bonded_stiffness(strand, &o).context("rod model")?;
     let mut law = rod.free;
     for (j, l) in strand.layers().iter().enumerate() {
-        let b = interface_bonded_stiffness(strand, j, &o).context("interface model")?;
+        // The bond radius of the variant is the first layer's on the core only.
+        let oj = BondedOptions {
+            contact_radius: if j == 0 { o.contact_radius } else { None },
+            ..o
+        };
+        let b = interface_bonded_stiffness(strand, j, &oj).context("interface model")?;
         law += b.stick_factor() * strand.layer_plane_section_stick(l);
     }
     Ok(Measured {
