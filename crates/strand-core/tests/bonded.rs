@@ -5,6 +5,7 @@
 //! `bonded` stick stiffness takes the model's stick factor on each wire's spring.
 
 use proptest::prelude::*;
+use strand_core::bonded::strand_bonded_stiffness;
 use strand_core::{
     BondedOptions, LawKind, LayDirection, LayerSpec, Material, SectionLaw, SectionOptions,
     StickStiffness, Strand, StrandSpec, WireSpec, bonded_stiffness,
@@ -242,5 +243,152 @@ proptest! {
             }
         }
         prop_assert!(slipping > 0);
+    }
+}
+
+/// A strand of two layers (each m >= 3) of its own materials, lay angles and directions.
+fn two_layers(
+    (dc, ec, m1, d1, e1, a1): (f64, f64, usize, f64, f64, f64),
+    (m2, d2, e2, a2): (usize, f64, f64, f64),
+    (right1, right2): (bool, bool),
+) -> Option<Strand> {
+    let mat = |e: f64, nu: f64| Material {
+        youngs_modulus: e,
+        poisson_ratio: nu,
+        density: 7800.0,
+    };
+    let dir = |r: bool| {
+        if r {
+            LayDirection::Right
+        } else {
+            LayDirection::Left
+        }
+    };
+    let layer = |m: usize, d: f64, e: f64, nu: f64, a: f64, right: bool| LayerSpec {
+        wires: m,
+        wire: WireSpec {
+            diameter: d,
+            material: mat(e, nu),
+        },
+        lay_angle: a.to_radians(),
+        phase: 0.0,
+        direction: dir(right),
+    };
+    Strand::new(StrandSpec {
+        length: 0.3,
+        core: WireSpec {
+            diameter: dc,
+            material: mat(ec, 0.3),
+        },
+        layers: vec![
+            layer(m1, d1, e1, 0.28, a1, right1),
+            layer(m2, d2, e2, 0.33, a2, right2),
+        ],
+        friction: 0.3,
+    })
+    .ok()
+}
+
+fn random_two_layers() -> impl Strategy<Value = Strand> {
+    (
+        (1e-3..4e-3f64, 3usize..=8, 0.6..1.2f64, 3.0..25.0f64),
+        (
+            0.6..1.2f64,
+            3.0..25.0f64,
+            0.3..3.0f64,
+            any::<(bool, bool)>(),
+        ),
+    )
+        .prop_filter_map(
+            "overlapping layer",
+            |((dc, m1, r1, a1), (r2, a2, er, dirs))| {
+                let (d1, d2) = (dc * r1, dc * r1 * r2);
+                // The outer layer closed or nearly so: as many wires as fit on its radius.
+                let radius = 0.5 * dc + d1 + 0.5 * d2;
+                let m2 =
+                    ((std::f64::consts::PI / (0.5 * d2 / radius).asin()).floor() as usize).max(3);
+                two_layers(
+                    (dc, 2e11, m1, d1, 2e11 * er, a1),
+                    (m2, d2, 2e11 / er, a2),
+                    dirs,
+                )
+            },
+        )
+}
+
+/// Costello's frictionless stiffness of every layer and the core, summed.
+fn costello_sum(s: &Strand) -> f64 {
+    s.layers().iter().fold(
+        s.core().material.youngs_modulus * s.core().inertia(),
+        |sum, l| {
+            let w = &l.spec.wire;
+            let (a, nu) = (l.lay_angle(), w.material.poisson_ratio);
+            sum + l.wires() as f64 * w.material.youngs_modulus * w.inertia() * a.cos() * 2.0
+                / (2.0 + nu * a.sin().powi(2))
+        },
+    )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// The whole strand as one body (`strand_bonded_stiffness`): with every wire free to
+    /// slide on what lies beneath it, the sum of Costello's stiffnesses of the layers and the
+    /// core's E I, to round-off; the mirror image of the strand (every lay direction
+    /// reversed) has the same stiffness, bonded and free; the bond lies between the free
+    /// strand and the plane-section bound of rigid-section wires (the energy of the plane
+    /// section's own field, here taken as K_max plus the wires' share of the free stiffness,
+    /// which bounds it from above only loosely: the bonded value must stay below K_max plus
+    /// the whole of K_min).
+    #[test]
+    fn the_strand_as_one_body_is_costello_when_free_and_mirror_symmetric(s in random_two_layers()) {
+        let o = BondedOptions::default();
+        let b = strand_bonded_stiffness(&s, &o).unwrap();
+        let c = costello_sum(&s);
+        prop_assert!((b.free / c - 1.0).abs() < 1e-9, "free {} Costello {}", b.free, c);
+        let mut spec = s.spec().clone();
+        for l in &mut spec.layers {
+            l.direction = match l.direction {
+                LayDirection::Right => LayDirection::Left,
+                LayDirection::Left => LayDirection::Right,
+            };
+        }
+        let mirror = strand_bonded_stiffness(&Strand::new(spec).unwrap(), &o).unwrap();
+        prop_assert!((mirror.bonded / b.bonded - 1.0).abs() < 1e-9, "{} {}", mirror.bonded, b.bonded);
+        prop_assert!(b.bonded > b.free);
+        prop_assert!(b.bonded < b.free + b.plane_section_stick + c);
+    }
+
+    /// One layer: the strand as one body is the one-interface model (`bonded_stiffness`).
+    #[test]
+    fn one_layer_as_one_body_is_the_interface_model(s in random_strand()) {
+        for o in [
+            BondedOptions::default(),
+            BondedOptions { wire_torsion: 10.0, core_shear: 3.0, ..Default::default() },
+        ] {
+            let a = bonded_stiffness(&s, &o).unwrap();
+            let b = strand_bonded_stiffness(&s, &o).unwrap();
+            prop_assert!((a.bonded / b.bonded - 1.0).abs() < 1e-9, "{} {}", a.bonded, b.bonded);
+            prop_assert!((a.free / b.free - 1.0).abs() < 1e-9, "{} {}", a.free, b.free);
+        }
+    }
+}
+
+/// Nearly straight layers, either direction: the bond delivers the plane-section stiffness
+/// of both layers as the lay angles tend to zero, the deficit 1 - stick factor falling as
+/// alpha^2 (the plane section's mismatch with a helix, and so every source term of the rod
+/// equations, is first order in sin(alpha); the energy it releases second order).
+#[test]
+fn straight_layers_bond_fully_as_one_body() {
+    for dirs in [(true, true), (true, false), (false, true), (false, false)] {
+        let deficit = |a: f64| {
+            let s = two_layers((3e-3, 2e11, 6, 3e-3, 2e11, a), (12, 3e-3, 2e11, a), dirs).unwrap();
+            1.0 - strand_bonded_stiffness(&s, &BondedOptions::default())
+                .unwrap()
+                .stick_factor()
+        };
+        let (d1, d2) = (deficit(0.2), deficit(0.1));
+        assert!(d2 > 0.0 && d2 < 1e-3, "{dirs:?}: {d2}");
+        assert!((d2 / d1 - 0.25).abs() < 0.01, "{dirs:?}: {d1} {d2}");
     }
 }

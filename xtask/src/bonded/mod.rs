@@ -30,6 +30,7 @@ use strand_core::{
 use strand_fine::{BendingTest, ContactOptions, SpringScale};
 
 mod curve;
+mod multilayer;
 
 use crate::validate::machine::Provenance;
 use crate::validate::repo_root;
@@ -38,11 +39,18 @@ use crate::validate::report::{Bound, Report, Row};
 /// Options of `cargo xtask bonded`.
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct BondedArgs {
-    /// Only the Table 1 strand's physical and compliance-free variants.
+    /// Only the Table 1 strand's physical and compliance-free variants (with `--multilayer`:
+    /// the 1+6+12 strand's).
     #[arg(long)]
     pub quick: bool,
+    /// The 1+6+12 strand of `examples/steel-1x19-swing.json` instead of the one-layer
+    /// strands (`validation/bonded/multilayer.json`; `--update-docs` writes its table into
+    /// docs/book/src/multilayer.md, between the `bonded-multilayer` markers).
+    #[arg(long)]
+    pub multilayer: bool,
     /// Only this variant (e.g. `physical`, `removed`; `curve`: only the moment-curvature
-    /// curves with friction).
+    /// curves with friction; with `--multilayer` also `wire-torsion`, `default-penalties`,
+    /// ...).
     #[arg(long, value_name = "NAME")]
     pub variant: Option<String>,
     /// Folder of the report [default: target/bonded].
@@ -420,6 +428,9 @@ fn study(sname: &str, strand: &Strand, load: &Loading, v: &Variant) -> anyhow::R
 
 /// Runs the study and writes the report; the caller decides the exit status.
 pub fn run(args: &BondedArgs) -> anyhow::Result<Report> {
+    if args.multilayer {
+        return run_multilayer(args);
+    }
     if args.update_docs && (args.quick || args.variant.as_ref().is_some_and(|v| v != "curve")) {
         anyhow::bail!(
             "--update-docs writes the manual's curve tables: run the full study or --variant curve"
@@ -515,6 +526,53 @@ pub fn run(args: &BondedArgs) -> anyhow::Result<Report> {
             crate::book::pages::Page::Validation,
             "bonded",
             &curve_docs(&report, &curves),
+        )?;
+    }
+    Ok(report)
+}
+
+/// `--multilayer`: the 1+6+12 strand's study ([`multilayer`]).
+fn run_multilayer(args: &BondedArgs) -> anyhow::Result<Report> {
+    if args.update_docs && (args.quick || args.variant.is_some()) {
+        anyhow::bail!(
+            "--update-docs writes the full multi-layer table: run it without --quick and --variant"
+        );
+    }
+    let t0 = Instant::now();
+    let root = repo_root();
+    let limits = multilayer::limits()?;
+    let (measured, failed) = multilayer::run(args.quick, args.variant.as_deref());
+    let mut rows = multilayer::judge(&measured, &limits);
+    rows.extend(failed);
+    let report = Report::new(
+        Provenance::detect(&root),
+        args.quick,
+        t0.elapsed().as_secs_f64(),
+        rows,
+    )
+    .titled(
+        "Bonded stiffness study, 1+6+12 strand",
+        "strand",
+        "validation/bonded/multilayer.json",
+    );
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| root.join("target").join("bonded-multilayer"));
+    report.write(&out)?;
+    let detail = multilayer::details(&measured);
+    std::fs::write(out.join("study.md"), &detail)
+        .with_context(|| format!("writing {}", out.join("study.md").display()))?;
+    std::fs::write(
+        out.join("study.json"),
+        serde_json::to_string_pretty(&measured)? + "\n",
+    )?;
+    print!("{detail}");
+    if args.update_docs {
+        crate::book::pages::update(
+            crate::book::pages::Page::Multilayer,
+            "bonded-multilayer",
+            &(report.docs() + "\n" + &detail),
         )?;
     }
     Ok(report)

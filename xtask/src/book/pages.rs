@@ -23,7 +23,7 @@ pub enum Page {
     Validation,
     /// `performance.md`: pareto, bench-peers.
     Performance,
-    /// `multilayer.md`: multilayer-curve.
+    /// `multilayer.md`: multilayer-curve, bonded-multilayer.
     Multilayer,
 }
 
