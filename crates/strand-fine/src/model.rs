@@ -578,6 +578,22 @@ impl FineModel {
         }
     }
 
+    /// This model with the normal penalty of every contact (wire-to-core points and
+    /// wire-to-wire links) scaled by `factor` (-): the softer contacts of a penalty
+    /// continuation ([`crate::StaticOptions::penalty_stages`]).
+    pub fn with_normal_penalty_scaled(&self, factor: f64) -> FineModel {
+        let mut m = self.clone();
+        for w in &mut m.wires {
+            for c in &mut w.contacts {
+                c.law.normal_stiffness *= factor;
+            }
+            for l in &mut w.links {
+                l.law.normal_stiffness *= factor;
+            }
+        }
+        m
+    }
+
     /// Total number of wire-to-core contact points.
     pub fn contact_count(&self) -> usize {
         self.wires.iter().map(|w| w.contacts.len()).sum()

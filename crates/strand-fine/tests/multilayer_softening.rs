@@ -9,7 +9,7 @@ use strand_core::{
     BaseStiffness, BaseTension, LawKind, LayDirection, LayerSpec, Material, SectionLaw,
     SectionOptions, Strand, StrandSpec, WireSpec, stretched_min_bending_stiffness,
 };
-use strand_fine::NormalPenalty;
+use strand_fine::{BendingTest, NormalPenalty};
 
 mod common;
 
@@ -61,25 +61,69 @@ fn env(k: &str, d: f64) -> f64 {
         .unwrap_or(d)
 }
 
-/// M / kappa (N m^2) of the frictionless cell test at tension `t` (N).
-fn stiffness(s: &Strand, t: f64, pitches: usize, spp: usize, penetration: f64) -> f64 {
-    let mut test = common::thin_rod_cell(pitches, spp, t, env("K", 0.5), penetration);
+/// The frictionless cell test at tension `t` (N): `pitches` outer pitches of `spp` segments,
+/// allowed penetration `penetration` (fraction of the wire diameter), every load step solved
+/// after `stages` softer penalties ([`strand_fine::StaticOptions::penalty_stages`]), bent to
+/// `kappa` (1/m).
+fn cell(
+    t: f64,
+    (pitches, spp): (usize, usize),
+    penetration: f64,
+    stages: usize,
+    kappa: f64,
+) -> BendingTest {
+    let mut test = common::thin_rod_cell(pitches, spp, t, kappa, penetration);
     if env("RULE", 1.0) > 0.0 {
         test.contact.normal_penalty = NormalPenalty::Penetration;
     }
-    common::secant_stiffness(&test, s)
+    test.statics.penalty_stages = stages;
+    test
+}
+
+/// M / kappa (N m^2) of the frictionless cell test at tension `t` (N), [`cell`].
+fn stiffness(s: &Strand, t: f64, pitches: usize, spp: usize, penetration: f64) -> f64 {
+    let stages = env("STAGES", 2.0) as usize;
+    common::secant_stiffness(
+        &cell(t, (pitches, spp), penetration, stages, env("K", 0.1)),
+        s,
+    )
+}
+
+/// The cell at 1 N, 12 segments per pitch, 3 outer pitches, penetration 1e-5 of the diameter
+/// (0.1 1/m): with two penalty stages (1e-3 and 1e-4 of the diameter, then 1e-5) the tension
+/// step and the bend converge by Newton, and M / kappa is the law's sum of the layers'
+/// thin-rod stiffness within the 1 % the frictionless multi-layer K_min is asked to meet
+/// (issue of the multi-layer fine model; measured 0.52 % above, the Strands of several layers
+/// page). Without the stages (`penalty_stages` 0) the tension step stalls: 60 Newton
+/// iterations, scaled residual 0.48, line-search steps of 2e-4 to 1e-1.
+#[test]
+fn tension_step_of_the_1x19_cell_converges_with_penalty_stages() {
+    let s = strand(8.0, 12.0);
+    let t = 1.0;
+    let eps = t / s.axial_stiffness();
+    let theory = stretched_min_bending_stiffness(&s, eps);
+    let curve = cell(t, (3, 12), 1e-5, 2, 0.1)
+        .run(&s)
+        .expect("bending test");
+    let point = curve.last().unwrap();
+    let k = point.secant_stiffness();
+    println!(
+        "M/kappa {:.6} of the thin-rod sum; {} Newton iterations; tension {:.4} N",
+        k / theory,
+        point.iterations,
+        point.tension
+    );
+    assert!((k / theory - 1.0).abs() < 1e-2, "{} of the sum", k / theory);
 }
 
 /// The fine strand's M / kappa (per deformed curvature) against the law's: K_min(eps) of the
 /// `thin_rod` law is per unit rest curvature, so the fine test's figure is `(1 + eps)` times
 /// it. Prints the law's, the thin-rod sum evaluated directly
 /// (`stretched_min_bending_stiffness`) and the fine figure, in units of the tension-free
-/// K_min. A study, not a check: at 1 N, 12 segments per pitch and 3 pitches the cell's
-/// tension step did not converge with the allowed penetration at 1e-5 or 1e-4 of the
-/// diameter, and with 1e-3 the bend stopped at 0.344 of 0.5 1/m (the Strands of several
-/// layers page of the manual).
+/// K_min. A study (the Strands of several layers page of the manual): STAGES penalty stages
+/// (default 2).
 #[test]
-#[ignore = "study: T, SPP, PITCHES, PEN, K, RULE, INNER, OUTER from the environment"]
+#[ignore = "study: T, SPP, PITCHES, PEN, K, RULE, STAGES, INNER, OUTER from the environment"]
 fn probe() {
     let s = strand(env("INNER", 8.0), env("OUTER", 12.0));
     let t = env("T", 1.0);
