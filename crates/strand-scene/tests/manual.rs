@@ -197,7 +197,7 @@ fn scene_files(dir: &Path, out: &mut Vec<PathBuf>) {
         } else if path.extension().is_some_and(|e| e == "json")
             && !matches!(
                 path.file_name().and_then(|n| n.to_str()),
-                Some("criteria.json" | "tolerances.json")
+                Some("criteria.json" | "multilayer-criteria.json" | "tolerances.json")
             )
         {
             out.push(path);

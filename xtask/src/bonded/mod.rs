@@ -44,7 +44,7 @@ pub struct BondedArgs {
     #[arg(long)]
     pub quick: bool,
     /// The 1+6+12 strand of `examples/steel-1x19-swing.json` instead of the one-layer
-    /// strands (`validation/bonded/multilayer.json`; `--update-docs` writes its table into
+    /// strands (`validation/bonded/multilayer-criteria.json`; `--update-docs` writes its table into
     /// docs/book/src/multilayer.md, between the `bonded-multilayer` markers).
     #[arg(long)]
     pub multilayer: bool,
@@ -553,7 +553,7 @@ fn run_multilayer(args: &BondedArgs) -> anyhow::Result<Report> {
     .titled(
         "Bonded stiffness study, 1+6+12 strand",
         "strand",
-        "validation/bonded/multilayer.json",
+        "validation/bonded/multilayer-criteria.json",
     );
     let out = args
         .out

@@ -16,7 +16,7 @@
 //! `section.stick_stiffness = bonded` (each layer on a rigid-section body of the layers
 //! beneath).
 //!
-//! Criteria (`validation/bonded/multilayer.json`): with the compliances removed, the fine
+//! Criteria (`validation/bonded/multilayer-criteria.json`): with the compliances removed, the fine
 //! stiffness within 2 % of K_max; the physical strand's rod-model value within 5 % of the fine
 //! model's; both extrapolations converged well inside those.
 
@@ -346,9 +346,9 @@ pub fn run(quick: bool, only: Option<&str>) -> (Vec<Measured>, Vec<Row>) {
     (measured, failed)
 }
 
-/// Loads `validation/bonded/multilayer.json`.
+/// Loads `validation/bonded/multilayer-criteria.json`.
 pub fn limits() -> anyhow::Result<Limits> {
-    let path = repo_root().join("validation/bonded/multilayer.json");
+    let path = repo_root().join("validation/bonded/multilayer-criteria.json");
     let text = std::fs::read_to_string(&path).with_context(|| format!("{}", path.display()))?;
     serde_json::from_str(&text).with_context(|| format!("{}", path.display()))
 }
