@@ -12,24 +12,6 @@ mod common;
 
 use strand_fine::{SettledOptions, damping_and_ramp, solve_settled};
 
-fn cpu_seconds() -> f64 {
-    // utime + stime of this process, in clock ticks (fields 14 and 15 of /proc/self/stat).
-    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
-    let fields: Vec<&str> = stat
-        .rsplit(')')
-        .next()
-        .unwrap_or("")
-        .split_whitespace()
-        .collect();
-    let ticks = |i: usize| {
-        fields
-            .get(i)
-            .and_then(|f| f.parse::<f64>().ok())
-            .unwrap_or(0.0)
-    };
-    (ticks(11) + ticks(12)) / 100.0
-}
-
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let arg = |i: usize, d: f64| args.get(i).map_or(d, |s| s.parse().unwrap());
@@ -53,6 +35,6 @@ fn main() {
         tip.x,
         tip.y,
         tip.z,
-        cpu_seconds()
+        common::cpu_seconds()
     );
 }

@@ -7,30 +7,14 @@
 //! `GROWTH` (4), `COMMIT=1` and `ELASTIC=1` set the continuation's options. Prints the explicit steps, the continuation's steps, the Newton polish, the
 //! tip and the CPU time of the process.
 
+mod common;
+
 use nalgebra::Vector3;
 use strand_core::{Strand, StrandSpec};
 use strand_fine::pseudo_transient::PseudoTransientOptions;
 use strand_fine::{
     ContactOptions, Discretisation, FineModel, SettledOptions, Support, solve_settled,
 };
-
-fn cpu_seconds() -> f64 {
-    // utime + stime of this process, in clock ticks (fields 14 and 15 of /proc/self/stat).
-    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
-    let fields: Vec<&str> = stat
-        .rsplit(')')
-        .next()
-        .unwrap_or("")
-        .split_whitespace()
-        .collect();
-    let ticks = |i: usize| {
-        fields
-            .get(i)
-            .and_then(|f| f.parse::<f64>().ok())
-            .unwrap_or(0.0)
-    };
-    (ticks(11) + ticks(12)) / 100.0
-}
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -82,6 +66,6 @@ fn main() {
         tip.x,
         tip.y,
         tip.z,
-        cpu_seconds()
+        common::cpu_seconds()
     );
 }

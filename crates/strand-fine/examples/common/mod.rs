@@ -1,5 +1,7 @@
-//! What the settle examples share: the Fig. 7 fine model and the line that reports a settled
-//! solve.
+//! What the settle examples share: the Fig. 7 fine model, the line that reports a settled
+//! solve and the CPU time of the process.
+// Each example uses a part of it.
+#![allow(dead_code)]
 
 use nalgebra::Vector3;
 use strand_core::{Strand, StrandSpec};
@@ -32,4 +34,24 @@ pub fn settled_line(r: &SettledReport) -> String {
         "{} steps of {:.4e} s, {:.3} s, Newton {} it in {} attempts, residual {:.2e}",
         r.settle.steps, r.settle.time_step, r.settle.time, r.iterations, r.attempts, r.residual,
     )
+}
+
+/// CPU time (s) of this process so far, user + system, all threads (fields 14 and 15 of
+/// `/proc/self/stat`; 0 where there is none).
+pub fn cpu_seconds() -> f64 {
+    // utime + stime, in clock ticks of 1/100 s.
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    let fields: Vec<&str> = stat
+        .rsplit(')')
+        .next()
+        .unwrap_or("")
+        .split_whitespace()
+        .collect();
+    let ticks = |i: usize| {
+        fields
+            .get(i)
+            .and_then(|f| f.parse::<f64>().ok())
+            .unwrap_or(0.0)
+    };
+    (ticks(11) + ticks(12)) / 100.0
 }
