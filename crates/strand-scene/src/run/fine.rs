@@ -389,6 +389,13 @@ fn run_settle(
             s.discarded_steps, s.time_step
         ));
     }
+    if s.allowance_ratio > 1.0 {
+        summary.warnings.push(format!(
+            "the damped motion did not come to rest (largest segment force or torque {:.2e} \
+             times the allowance after {} steps, {:.3} s); Newton started from where it stopped",
+            s.allowance_ratio, s.steps, s.time
+        ));
+    }
     match r.polish {
         Some(p) => summary.built.push(format!(
             "converged: every segment's force and torque within {:.0e} of the largest segment \

@@ -1,0 +1,115 @@
+//! The 1+6+12 cantilever (`validation/multilayer/vs-fine-1x19-cantilever.json`, 12 segments a
+//! wire): the damped motion stands still without meeting its rest criterion (segments
+//! vibrating against contacts that open and close), and
+//! [`SettledOptions::polish_stalled`] starts Newton from where it stopped. The result is
+//! checked against the definitions of a static state, independently of the solver's report:
+//! every segment's force within the rest criterion (1e-4 of the largest segment weight, the
+//! criterion the motion does not reach) and every closed contact inside its Coulomb cone.
+
+use nalgebra::Vector3;
+use strand_core::{LayDirection, LayerSpec, Material, Strand, StrandSpec, WireSpec};
+use strand_fine::{
+    ContactOptions, ContactState, Discretisation, FineModel, ModelState, SettleError,
+    SettledOptions, Support, solve_settled,
+};
+
+const MU: f64 = 0.3;
+
+fn cantilever() -> FineModel {
+    let mat = Material {
+        youngs_modulus: 5.0e7,
+        poisson_ratio: 0.3,
+        density: 7800.0,
+    };
+    let layer = |wires, direction| LayerSpec {
+        wires,
+        wire: WireSpec {
+            diameter: 1.5e-3,
+            material: mat,
+        },
+        lay_angle: 20f64.to_radians(),
+        phase: 0.0,
+        direction,
+    };
+    let strand = Strand::new(StrandSpec {
+        length: 0.08,
+        core: WireSpec {
+            diameter: 2.2e-3,
+            material: mat,
+        },
+        layers: vec![layer(6, LayDirection::Right), layer(12, LayDirection::Left)],
+        friction: MU,
+    })
+    .unwrap();
+    let mut m = FineModel::from_strand(
+        &strand,
+        Discretisation {
+            core_segments: 12,
+            wire_segments: 12,
+        },
+        Support::Clamped,
+        Support::Free,
+    );
+    m.gravity = Vector3::new(0.0, -10.0, 0.0);
+    m.add_contacts(&strand, &ContactOptions::default());
+    m
+}
+
+/// Largest segment force and torque over the largest segment weight (torque divided by the
+/// segment's length too), and the largest |F_t| / (mu N) of a closed contact.
+fn residual(m: &FineModel, state: &ModelState) -> (f64, f64) {
+    let weight = m
+        .wires
+        .iter()
+        .flat_map(|w| w.chain.segments.iter())
+        .map(|s| s.mass * m.gravity.norm())
+        .fold(0.0, f64::max);
+    let mut loads = m.load_buffers();
+    m.compute_loads(state, 1.0, &mut loads);
+    let mut force: f64 = 0.0;
+    let mut cone: f64 = 0.0;
+    for (w, l) in m.wires.iter().zip(&loads) {
+        for ((f, t), s) in l.forces.iter().zip(&l.torques).zip(&w.chain.segments) {
+            force = force
+                .max(f.norm() / weight)
+                .max(t.norm() / (weight * s.length));
+        }
+        for c in l.contacts.iter().filter(|c| c.state != ContactState::Open) {
+            cone = cone.max(c.tangential_force.norm() / (MU * c.normal_force));
+        }
+    }
+    (force, cone)
+}
+
+#[test]
+fn newton_from_a_stalled_settle_reaches_a_static_state() {
+    let m = cantilever();
+    let mut opts = SettledOptions::default();
+    // 0.5 s of motion: the tip stands still (1.7e-5 m over the last 0.08 s) while the
+    // residual stays at 1-2 segment weights.
+    opts.settle.max_steps = Some(60_000);
+
+    // Without the option the motion stops at its limit, not at rest.
+    let mut stalled = m.rest_state();
+    let off = SettledOptions {
+        polish_stalled: false,
+        ..opts
+    };
+    let e = solve_settled(&m, &mut stalled, &off, &mut |_, _, _| {}).unwrap_err();
+    assert!(matches!(e, SettleError::StepLimit { .. }), "{e}");
+    let (f_stalled, _) = residual(&m, &stalled);
+    assert!(f_stalled > 1e-4, "stalled residual {f_stalled:.3e}");
+
+    let mut state = m.rest_state();
+    let r = solve_settled(&m, &mut state, &opts, &mut |_, _, _| {}).unwrap();
+    assert!(r.polish.is_some());
+    assert!(r.settle.allowance_ratio > 1.0);
+    let (f, cone) = residual(&m, &state);
+    assert!(f <= 1e-4, "residual {f:.3e} segment weights");
+    assert!(cone <= 1.0 + 1e-9, "|Ft| / (mu N) up to {cone}");
+    // Newton finishes where the motion stood: within a tenth of the paper's static limit
+    // (1e-3 m) of the stalled tip.
+    let tip = |s: &ModelState| *m.core_centreline(s).last().unwrap();
+    let moved = (tip(&state) - tip(&stalled)).norm();
+    assert!(moved < 1e-4, "Newton moved the tip {moved:.3e} m");
+}
