@@ -2,7 +2,7 @@
 //! `validation/multilayer/vs-fine-1x19-cantilever.json` (0.08 m, core 2.2 mm, 6 + 12 wires of
 //! 1.5 mm at 20 deg right / left, E 5e7 Pa, clamped at its start, g = 10 m/s^2 across),
 //! `SEGMENTS` (12) a wire, damped motion for `STEPS` (150,000) explicit steps; `FRICTION`
-//! (0.3) sets mu. Prints, every `EVERY` (10,000) steps, the residual's ratio to the settle's
+//! (0.3) sets mu, `LAYERS` (2) keeps the first layers only. Prints, every `EVERY` (10,000) steps, the residual's ratio to the settle's
 //! allowance, the worst segment (wire, layer, segment, force or torque) and how many contacts
 //! changed state (open / stick / slip) since the last print; at the end the worst segments
 //! with the contacts acting on them, and Newton from the stalled state with 0 and
@@ -22,7 +22,7 @@ fn env(k: &str, d: f64) -> f64 {
     std::env::var(k).map_or(d, |v| v.parse().unwrap())
 }
 
-fn strand(friction: f64) -> Strand {
+fn strand(friction: f64, layers: usize) -> Strand {
     let mat = Material {
         youngs_modulus: 5.0e7,
         poisson_ratio: 0.3,
@@ -44,7 +44,8 @@ fn strand(friction: f64) -> Strand {
             diameter: 2.2e-3,
             material: mat,
         },
-        layers: vec![layer(6, LayDirection::Right), layer(12, LayDirection::Left)],
+        layers: vec![layer(6, LayDirection::Right), layer(12, LayDirection::Left)][..layers]
+            .to_vec(),
         friction,
     })
     .unwrap()
@@ -93,7 +94,7 @@ fn main() {
     let n = env("SEGMENTS", 12.0) as usize;
     let steps = env("STEPS", 150_000.0) as u64;
     let every = env("EVERY", 10_000.0) as u64;
-    let s = strand(env("FRICTION", 0.3));
+    let s = strand(env("FRICTION", 0.3), env("LAYERS", 2.0) as usize);
     let mut m = FineModel::from_strand(
         &s,
         Discretisation {
