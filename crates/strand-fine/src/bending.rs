@@ -483,18 +483,93 @@ impl BendingTest {
             .collect()
     }
 
-    fn measure(
-        &self,
+    /// The internal bending moment (N m) at every cut through a joint of the core at `state`,
+    /// with the cut's rest x (m): from the equilibrium of the part of the strand before the
+    /// cut (clamp reactions and pressure loads), about the core's centreline at the cut. The
+    /// first entry (x = 0) is the moment at the clamp. The test's moment is the mean over the
+    /// cuts in the middle pitches.
+    pub fn moment_profile(model: &FineModel, state: &ModelState) -> Vec<(f64, f64)> {
+        Self::moment_profile_of(model, state, &Self::external_loads(model, state).0)
+    }
+
+    /// [`BendingTest::moment_profile`] from the external loads `ext`.
+    fn moment_profile_of(
         model: &FineModel,
         state: &ModelState,
-        kappa: f64,
-        iterations: usize,
-        (lo, hi): (f64, f64),
-    ) -> BendingPoint {
-        let mut loads = model.load_buffers();
-        model.compute_loads(state, 1.0, &mut loads);
-        // Clamp reactions on the segments (start anchors) and pressure loads, with the rest
-        // x of the segment they act on.
+        ext: &[ExternalLoad],
+    ) -> Vec<(f64, f64)> {
+        let core = &model.wires[0].chain;
+        let line = core.centreline(&state.wires[0].poses);
+        let l = core.segments[0].length;
+        line.iter()
+            .enumerate()
+            .map(|(k, c)| {
+                let x = k as f64 * l;
+                (x, moment_at(ext, x, c))
+            })
+            .collect()
+    }
+
+    /// M / kappa (N m^2) over the window from rest x `lo` to `hi` (m) at `state`: the mean of
+    /// the [`BendingTest::moment_profile`] over the window (trapezoid rule, linear between the
+    /// cuts) over the core's mean curvature there (the change of its tangent angle, linear
+    /// between segment centres, over the window's arc length on the stretched core).
+    ///
+    /// The test's own figure ([`BendingPoint::secant_stiffness`]) takes both over whole pitches
+    /// of the longest-pitch layer. On a strand of several layers the core's curvature
+    /// oscillates with the pitch of the layer on it (about 2.5 % on the 1+6+12 cell), so that
+    /// figure depends on where the window falls; a window of a whole number of that layer's
+    /// pitches ([`BendingTest::centred_window`]) removes it (the Strands of several layers
+    /// page of the manual).
+    pub fn window_stiffness(model: &FineModel, state: &ModelState, (lo, hi): (f64, f64)) -> f64 {
+        let m = Self::moment_profile(model, state);
+        let mut integral = 0.0;
+        for w in m.windows(2) {
+            let ((x0, m0), (x1, m1)) = (w[0], w[1]);
+            let (a, b) = (x0.max(lo), x1.min(hi));
+            if b > a {
+                let at = |x: f64| m0 + (m1 - m0) * (x - x0) / (x1 - x0);
+                integral += 0.5 * (at(a) + at(b)) * (b - a);
+            }
+        }
+        let moment = integral / (hi - lo);
+        let chain = &model.wires[0].chain;
+        let poses = &state.wires[0].poses;
+        let n = poses.len();
+        let l = chain.segments[0].length;
+        let angle = |k: usize| {
+            let t = poses[k].tangent();
+            t.y.atan2(t.x)
+        };
+        // Segment k's centre is at rest x (k + 1/2) l.
+        let at = |x: f64| {
+            let u = (x / l - 0.5).clamp(0.0, (n - 1) as f64);
+            let k = (u.floor() as usize).min(n - 2);
+            (k, u - k as f64)
+        };
+        let theta = |x: f64| {
+            let (k, f) = at(x);
+            (1.0 - f) * angle(k) + f * angle(k + 1)
+        };
+        let ((first, _), (last, _)) = (at(lo), at(hi));
+        let last = last.max(first) + 1;
+        let stretch = (first..last)
+            .map(|k| (poses[k + 1].position - poses[k].position).norm())
+            .sum::<f64>()
+            / ((last - first) as f64 * l);
+        moment / ((theta(hi) - theta(lo)) / ((hi - lo) * stretch))
+    }
+
+    /// The window of `count` periods `period` (m) centred on a strand `length` (m) long: rest
+    /// x from (length - count period) / 2 to (length + count period) / 2 (m).
+    pub fn centred_window(length: f64, period: f64, count: usize) -> (f64, f64) {
+        let span = count as f64 * period;
+        (0.5 * (length - span), 0.5 * (length + span))
+    }
+
+    /// Clamp reactions (rest x -1) and pressure loads (rest x of their segment) at `state`,
+    /// and the axial tension from the clamp reactions (N).
+    fn external_loads(model: &FineModel, state: &ModelState) -> (Vec<ExternalLoad>, f64) {
         let mut ext: Vec<ExternalLoad> = Vec::new();
         let mut tension = 0.0;
         for (w, s) in model.wires.iter().zip(&state.wires) {
@@ -510,24 +585,37 @@ impl BendingTest {
                 ext.push((r.position.x, p.position, *f, Vector3::zeros()));
             }
         }
-        let moment_at = |x_cut: f64, c: &Vector3<f64>| -> f64 {
-            -ext.iter()
-                .filter(|e| e.0 < x_cut)
-                .map(|(_, p, f, t)| ((p - c).cross(f) + t).z)
-                .sum::<f64>()
+        (ext, tension)
+    }
+
+    fn measure(
+        &self,
+        model: &FineModel,
+        state: &ModelState,
+        kappa: f64,
+        iterations: usize,
+        (lo, hi): (f64, f64),
+    ) -> BendingPoint {
+        let loads = {
+            let mut loads = model.load_buffers();
+            model.compute_loads(state, 1.0, &mut loads);
+            loads
         };
-        let core = &model.wires[0].chain;
-        let line = core.centreline(&state.wires[0].poses);
-        let l = core.segments[0].length;
+        // Clamp reactions on the segments (start anchors) and pressure loads, with the rest
+        // x of the segment they act on.
+        let (ext, tension) = Self::external_loads(model, state);
+        let profile = Self::moment_profile_of(model, state, &ext);
         let mut sum = 0.0;
         let mut cuts = 0;
-        for (k, c) in line.iter().enumerate() {
-            let x = k as f64 * l;
+        for &(x, m) in &profile {
             if x >= lo - 1e-12 && x <= hi + 1e-12 {
-                sum += moment_at(x, c);
+                sum += m;
                 cuts += 1;
             }
         }
+        let core = &model.wires[0].chain;
+        let l = core.segments[0].length;
+        let line = core.centreline(&state.wires[0].poses);
         // Curvature over [lo, hi]: tangent angle change of the core segments over the arc
         // length between their centres.
         let poses = &state.wires[0].poses;
@@ -552,7 +640,7 @@ impl BendingTest {
             imposed_curvature: kappa,
             curvature,
             moment: sum / cuts.max(1) as f64,
-            clamp_moment: moment_at(1e-12, &line[0]),
+            clamp_moment: moment_at(&ext, 1e-12, &line[0]),
             tension,
             iterations,
             stick: count(ContactState::Stick),
@@ -560,6 +648,15 @@ impl BendingTest {
             open: count(ContactState::Open),
         }
     }
+}
+
+/// The bending moment about z at a cut at rest x `x_cut` through the point `c` (N m): minus
+/// the moment about `c` of the external loads before the cut.
+fn moment_at(ext: &[ExternalLoad], x_cut: f64, c: &Vector3<f64>) -> f64 {
+    -ext.iter()
+        .filter(|e| e.0 < x_cut)
+        .map(|(_, p, f, t)| ((p - c).cross(f) + t).z)
+        .sum::<f64>()
 }
 
 #[cfg(test)]
