@@ -10,45 +10,17 @@
 //! `cargo run --release -p strand-fine --example cantilever_residual`.
 
 mod common;
+#[path = "../tests/common/mod.rs"]
+mod fixtures;
 
 use nalgebra::Vector3;
-use strand_core::{LayDirection, LayerSpec, Material, Strand, StrandSpec, WireSpec};
 use strand_fine::{
-    ContactOptions, ContactState, Discretisation, FineModel, ModelState, SettleOptions,
-    StaticOptions, Support, WireLoads, settle, solve_static,
+    ContactState, FineModel, ModelState, SettleOptions, StaticOptions, WireLoads, settle,
+    solve_static,
 };
 
 fn env(k: &str, d: f64) -> f64 {
     std::env::var(k).map_or(d, |v| v.parse().unwrap())
-}
-
-fn strand(friction: f64, layers: usize) -> Strand {
-    let mat = Material {
-        youngs_modulus: 5.0e7,
-        poisson_ratio: 0.3,
-        density: 7800.0,
-    };
-    let layer = |wires, direction| LayerSpec {
-        wires,
-        wire: WireSpec {
-            diameter: 1.5e-3,
-            material: mat,
-        },
-        lay_angle: 20f64.to_radians(),
-        phase: 0.0,
-        direction,
-    };
-    Strand::new(StrandSpec {
-        length: 0.08,
-        core: WireSpec {
-            diameter: 2.2e-3,
-            material: mat,
-        },
-        layers: vec![layer(6, LayDirection::Right), layer(12, LayDirection::Left)][..layers]
-            .to_vec(),
-        friction,
-    })
-    .unwrap()
 }
 
 fn layer_of(w: usize) -> usize {
@@ -94,18 +66,7 @@ fn main() {
     let n = env("SEGMENTS", 12.0) as usize;
     let steps = env("STEPS", 150_000.0) as u64;
     let every = env("EVERY", 10_000.0) as u64;
-    let s = strand(env("FRICTION", 0.3), env("LAYERS", 2.0) as usize);
-    let mut m = FineModel::from_strand(
-        &s,
-        Discretisation {
-            core_segments: n,
-            wire_segments: n,
-        },
-        Support::Clamped,
-        Support::Free,
-    );
-    m.gravity = Vector3::new(0.0, -10.0, 0.0);
-    m.add_contacts(&s, &ContactOptions::default());
+    let m = fixtures::cantilever_1x19(env("FRICTION", 0.3), env("LAYERS", 2.0) as usize, n);
     let f_ref = m
         .wires
         .iter()

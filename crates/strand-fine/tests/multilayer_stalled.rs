@@ -6,53 +6,16 @@
 //! every segment's force within the rest criterion (1e-4 of the largest segment weight, the
 //! criterion the motion does not reach) and every closed contact inside its Coulomb cone.
 
-use nalgebra::Vector3;
-use strand_core::{LayDirection, LayerSpec, Material, Strand, StrandSpec, WireSpec};
 use strand_fine::{
-    ContactOptions, ContactState, Discretisation, FineModel, ModelState, SettleError,
-    SettledOptions, Support, solve_settled,
+    ContactState, FineModel, ModelState, SettleError, SettledOptions, solve_settled,
 };
+
+mod common;
 
 const MU: f64 = 0.3;
 
 fn cantilever() -> FineModel {
-    let mat = Material {
-        youngs_modulus: 5.0e7,
-        poisson_ratio: 0.3,
-        density: 7800.0,
-    };
-    let layer = |wires, direction| LayerSpec {
-        wires,
-        wire: WireSpec {
-            diameter: 1.5e-3,
-            material: mat,
-        },
-        lay_angle: 20f64.to_radians(),
-        phase: 0.0,
-        direction,
-    };
-    let strand = Strand::new(StrandSpec {
-        length: 0.08,
-        core: WireSpec {
-            diameter: 2.2e-3,
-            material: mat,
-        },
-        layers: vec![layer(6, LayDirection::Right), layer(12, LayDirection::Left)],
-        friction: MU,
-    })
-    .unwrap();
-    let mut m = FineModel::from_strand(
-        &strand,
-        Discretisation {
-            core_segments: 12,
-            wire_segments: 12,
-        },
-        Support::Clamped,
-        Support::Free,
-    );
-    m.gravity = Vector3::new(0.0, -10.0, 0.0);
-    m.add_contacts(&strand, &ContactOptions::default());
-    m
+    common::cantilever_1x19(MU, 2, 12)
 }
 
 /// Largest segment force and torque over the largest segment weight (torque divided by the

@@ -2,8 +2,9 @@
 //! strand and the frictionless bending test set up as the thin-rod cell.
 #![allow(dead_code)]
 
-use strand_core::{Material, Strand, StrandSpec, WireSpec};
-use strand_fine::{BendingTest, Pressure};
+use nalgebra::Vector3;
+use strand_core::{LayDirection, LayerSpec, Material, Strand, StrandSpec, WireSpec};
+use strand_fine::{BendingTest, ContactOptions, Discretisation, FineModel, Pressure, Support};
 
 /// The `validation/vs-fine-30deg.json` strand: core 2.2 mm, six 1.5 mm wires at 30 deg,
 /// E = 5e7 Pa, nu = 0.3, no friction.
@@ -51,4 +52,49 @@ pub fn secant_stiffness(test: &BendingTest, s: &Strand) -> f64 {
         .last()
         .unwrap()
         .secant_stiffness()
+}
+
+/// The fine model of `validation/multilayer/vs-fine-1x19-cantilever.json`: 0.08 m, core
+/// 2.2 mm, 6 + 12 wires of 1.5 mm at 20 deg right / left (the first `layers` of the two),
+/// E = 5e7 Pa, friction `friction`, `segments` a wire, clamped at its start and free at its
+/// end, g = 10 m/s^2 along -y, the default contacts.
+pub fn cantilever_1x19(friction: f64, layers: usize, segments: usize) -> FineModel {
+    let mat = Material {
+        youngs_modulus: 5.0e7,
+        poisson_ratio: 0.3,
+        density: 7800.0,
+    };
+    let layer = |wires, direction| LayerSpec {
+        wires,
+        wire: WireSpec {
+            diameter: 1.5e-3,
+            material: mat,
+        },
+        lay_angle: 20f64.to_radians(),
+        phase: 0.0,
+        direction,
+    };
+    let strand = Strand::new(StrandSpec {
+        length: 0.08,
+        core: WireSpec {
+            diameter: 2.2e-3,
+            material: mat,
+        },
+        layers: vec![layer(6, LayDirection::Right), layer(12, LayDirection::Left)][..layers]
+            .to_vec(),
+        friction,
+    })
+    .unwrap();
+    let mut m = FineModel::from_strand(
+        &strand,
+        Discretisation {
+            core_segments: segments,
+            wire_segments: segments,
+        },
+        Support::Clamped,
+        Support::Free,
+    );
+    m.gravity = Vector3::new(0.0, -10.0, 0.0);
+    m.add_contacts(&strand, &ContactOptions::default());
+    m
 }
