@@ -504,11 +504,9 @@ fn one_layer_law_is_the_same_under_every_pressure() {
     }
 }
 
-/// A 1+6+12 strand: the inner layer's friction limit with the outer layer pressing down is
-/// larger than its own-layer capstan limit, on both sides and at every angle; the outer
-/// layer's is the capstan one under every variant.
-#[test]
-fn outer_layers_raise_the_inner_friction_limit() {
+/// The 1+6+12 steel strand of `examples/steel-1x19-swing.json` (core 3.3 mm, 6 and 12 wires
+/// of 3 mm at 8 deg right and 12 deg left, E = 2e11 Pa), mu = 0.3.
+fn steel_1x19() -> Strand {
     let wire = |d: f64| WireSpec {
         diameter: d,
         material: Material {
@@ -524,7 +522,7 @@ fn outer_layers_raise_the_inner_friction_limit() {
         phase: 0.0,
         direction,
     };
-    let s = Strand::new(StrandSpec {
+    Strand::new(StrandSpec {
         length: 1.0,
         core: wire(3.3e-3),
         layers: vec![
@@ -533,7 +531,15 @@ fn outer_layers_raise_the_inner_friction_limit() {
         ],
         friction: 0.3,
     })
-    .unwrap();
+    .unwrap()
+}
+
+/// A 1+6+12 strand: the inner layer's friction limit with the outer layer pressing down is
+/// larger than its own-layer capstan limit, on both sides and at every angle; the outer
+/// layer's is the capstan one under every variant.
+#[test]
+fn outer_layers_raise_the_inner_friction_limit() {
+    let s = steel_1x19();
     let own = law(&s, LawKind::Continuous, SlipPressure::OwnLayer);
     for p in [
         SlipPressure::Accumulated,
@@ -592,31 +598,7 @@ proptest! {
 /// theta >= 0.1: tolerance 1e-10 relative.
 #[test]
 fn two_faces_inner_limit_matches_its_closed_form() {
-    let wire = |d: f64| WireSpec {
-        diameter: d,
-        material: Material {
-            youngs_modulus: 2e11,
-            poisson_ratio: 0.3,
-            density: 7850.0,
-        },
-    };
-    let layer = |m: usize, deg: f64, direction| LayerSpec {
-        wires: m,
-        wire: wire(3e-3),
-        lay_angle: f64::to_radians(deg),
-        phase: 0.0,
-        direction,
-    };
-    let s = Strand::new(StrandSpec {
-        length: 1.0,
-        core: wire(3.3e-3),
-        layers: vec![
-            layer(6, 8.0, LayDirection::Right),
-            layer(12, 12.0, LayDirection::Left),
-        ],
-        friction: 0.3,
-    })
-    .unwrap();
+    let s = steel_1x19();
     let two = law(&s, LawKind::Continuous, SlipPressure::TwoFaces);
     let own = law(&s, LawKind::Continuous, SlipPressure::OwnLayer);
     let (l1, l2) = (&s.layers()[0], &s.layers()[1]);
