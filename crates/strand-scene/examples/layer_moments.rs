@@ -20,6 +20,12 @@
 //! rows go to a file as well. `STICK_LOSS=X` sets the contacts' `stick_loss` (the tangential
 //! penalty; default 0.05).
 //!
+//! `LAW_ONLY=ROWS.csv STICK_SCALE=f1,f2,..` runs no fine test: it follows the law along the
+//! measured curvatures of such a CSV with each layer's stick stiffness scaled by f_j. For the
+//! hysteretic slider, stick stiffness f k is the same as the strain f e at stiffness k (the
+//! slip state scales with it; the friction limits depend on the strain only), so layer j's
+//! friction moment is the law's at the curvature path f_j kappa.
+//!
 //! `cargo run --release -p strand-scene --example layer_moments -- SCENE T SPP PITCHES K1,K2,..`
 
 use std::collections::BTreeMap;
@@ -40,6 +46,10 @@ fn main() {
     let pitches: usize = args[4].parse().unwrap();
     let curvatures: Vec<f64> = args[5].split(',').map(|s| s.parse().unwrap()).collect();
     let strand = &scene.strand;
+    if let Ok(path) = std::env::var("LAW_ONLY") {
+        law_only(&scene, t, &path);
+        return;
+    }
     let test = BendingTest {
         pitches,
         segments_per_pitch: spp,
@@ -570,5 +580,70 @@ fn law_friction(scene: &Scene, strand: &Strand, eps: f64, p: &strand_fine::Bendi
             per_layer.iter().map(|v| v / n).collect::<Vec<_>>(),
             STATIONS
         );
+    }
+}
+
+/// The law's friction moment per layer along the measured curvatures of a CSV written by
+/// this example (`LAW_ONLY`), each layer's stick stiffness scaled by `STICK_SCALE` (see the
+/// module docs), under `accumulated` and `two_faces` at the nominal strain; with `CSV=PATH`
+/// the rows go to a file.
+fn law_only(scene: &Scene, t: f64, path: &str) {
+    let strand = &scene.strand;
+    let eps = t / strand.axial_stiffness();
+    let layers = strand.layers().len();
+    let scales: Vec<f64> = std::env::var("STICK_SCALE").map_or(vec![1.0; layers], |v| {
+        v.split(',').map(|s| s.parse().unwrap()).collect()
+    });
+    assert_eq!(scales.len(), layers, "STICK_SCALE: one factor per layer");
+    let text = std::fs::read_to_string(path).expect("rows");
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().expect("header").split(',').collect();
+    let col = header
+        .iter()
+        .position(|h| *h == "curvature")
+        .expect("curvature");
+    let kappas: Vec<f64> = lines
+        .map(|l| l.split(',').nth(col).unwrap().parse().unwrap())
+        .collect();
+    // One law per (pressure, layer): layer j's rows come from the law at f_j kappa.
+    let mut laws: Vec<Vec<LawLayers>> = [SlipPressure::Accumulated, SlipPressure::TwoFaces]
+        .iter()
+        .map(|&p| {
+            (0..layers)
+                .map(|_| LawLayers::new(strand, scene, p, eps))
+                .collect()
+        })
+        .collect();
+    let mut out = String::from("curvature");
+    for name in ["accumulated", "two_faces"] {
+        for j in 1..=layers {
+            out += &format!(",friction_{name}_{j}");
+        }
+    }
+    out += "\n";
+    println!("stick stiffness scaled per layer by {scales:?}");
+    for &kappa in &kappas {
+        let mut row = vec![kappa];
+        for per_layer in &mut laws {
+            for (j, law) in per_layer.iter_mut().enumerate() {
+                row.push(law.step(eps, scales[j] * kappa).1[j]);
+            }
+        }
+        println!(
+            "{}",
+            row.iter()
+                .map(|v| format!("{v:+.4e}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+        );
+        out += &row
+            .iter()
+            .map(|v| format!("{v:.8e}"))
+            .collect::<Vec<_>>()
+            .join(",");
+        out += "\n";
+    }
+    if let Ok(csv) = std::env::var("CSV") {
+        std::fs::write(&csv, out).expect("CSV");
     }
 }
