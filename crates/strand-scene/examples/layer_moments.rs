@@ -16,7 +16,8 @@
 //! fraction of the layer's closed contacts that slip, per kind; beside it the law's friction
 //! moment per layer, followed along the same measured curvatures with its slip state (as
 //! `strand bend` does for `law_moment`), under `section.slip_pressure` `accumulated` and
-//! `two_faces`, and its fraction of slipping wire-stations per layer. With `CSV=PATH` these
+//! `two_faces` at the nominal strain and `two_faces` at each point's measured tension, and its
+//! fraction of slipping wire-stations per layer. With `CSV=PATH` these
 //! rows go to a file as well. `STICK_LOSS=X` sets the contacts' `stick_loss` (the tangential
 //! penalty; default 0.05).
 //!
