@@ -290,6 +290,17 @@ impl BendingTest {
         strand: &Strand,
         progress: &mut dyn FnMut(&BendingPoint),
     ) -> Result<(Vec<BendingPoint>, FineModel, ModelState), BendingError> {
+        self.run_observed(strand, &mut |p, _, _| progress(p))
+    }
+
+    /// As [`BendingTest::run_with_progress`], calling `observe` with every measured point and
+    /// the model and equilibrium state it was measured on (e.g. to split the moment per layer
+    /// along a path with load reversals).
+    pub fn run_observed(
+        &self,
+        strand: &Strand,
+        observe: &mut dyn FnMut(&BendingPoint, &FineModel, &ModelState),
+    ) -> Result<(Vec<BendingPoint>, FineModel, ModelState), BendingError> {
         // The longest pitch: every layer spans at least `pitches` of its own.
         let pitch = strand
             .layers()
@@ -411,7 +422,7 @@ impl BendingTest {
                 }
             }
             let point = self.measure(&model, &state, kappa, iterations, (lo, hi));
-            progress(&point);
+            observe(&point, &model, &state);
             out.push(point);
         }
         Ok((out, model, state))

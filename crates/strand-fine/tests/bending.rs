@@ -374,3 +374,37 @@ fn wire_forces() {
         );
     }
 }
+
+/// `run_observed` hands out every measured point with the model and state it was measured
+/// on: the tension step and each load step of a path with a load reversal, the points those
+/// of `run_with_state`, the last state its final one (moment profiles equal bit for bit).
+#[test]
+fn observer_sees_every_converged_point() {
+    let s = table1();
+    let test = BendingTest {
+        pitches: 3,
+        segments_per_pitch: 8,
+        tension: 10.0,
+        curvatures: vec![0.2, -0.2],
+        contact: ContactOptions::default(),
+        friction: 0.3,
+        statics: BendingTest::load_step_statics(10.0),
+        max_halvings: 6,
+        core_springs: SpringScale::default(),
+        wire_springs: SpringScale::default(),
+        pressure: Default::default(),
+    };
+    let mut seen = Vec::new();
+    let mut last_profile = Vec::new();
+    let (curve, model, state) = test
+        .run_observed(&s, &mut |p, m, st| {
+            seen.push(*p);
+            last_profile = BendingTest::moment_profile(m, st);
+        })
+        .expect("bending test");
+    assert_eq!(seen.len(), 1 + test.curvatures.len());
+    assert_eq!(seen, curve);
+    assert_eq!(last_profile, BendingTest::moment_profile(&model, &state));
+    // The reversal turned the moment's sign: the observer saw the loaded states, not one.
+    assert!(seen[1].moment > 0.0 && seen[2].moment < 0.0);
+}
