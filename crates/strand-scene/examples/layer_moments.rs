@@ -576,10 +576,14 @@ fn law_friction(scene: &Scene, strand: &Strand, eps: f64, p: &strand_fine::Bendi
         let n = STATIONS as f64;
         println!(
             "law at {label} (strain {e:.4e}), bent from straight: M {:.5e} N m; friction moment \
-             per layer {:?} N m; slipping wire-stations per layer {slipping:?} of {}",
+             per layer {:?} N m; slipping wire-stations per layer {slipping:?} of {:?}",
             m / n,
             per_layer.iter().map(|v| v / n).collect::<Vec<_>>(),
-            STATIONS
+            strand
+                .layers()
+                .iter()
+                .map(|l| l.wires() * STATIONS)
+                .collect::<Vec<_>>()
         );
     }
 }
