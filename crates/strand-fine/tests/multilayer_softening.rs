@@ -64,7 +64,8 @@ fn env(k: &str, d: f64) -> f64 {
 /// The frictionless cell test at tension `t` (N): `pitches` outer pitches of `spp` segments,
 /// allowed penetration `penetration` (fraction of the wire diameter), every load step solved
 /// after `stages` softer penalties ([`strand_fine::StaticOptions::penalty_stages`]), bent to
-/// `kappa` (1/m).
+/// `kappa` (1/m); `ACTIVE=1` in the environment solves on active sets of the contact states
+/// ([`strand_fine::StaticOptions::active_set`]).
 fn cell(
     t: f64,
     (pitches, spp): (usize, usize),
@@ -77,6 +78,7 @@ fn cell(
         test.contact.normal_penalty = NormalPenalty::Penetration;
     }
     test.statics.penalty_stages = stages;
+    test.statics.active_set = env("ACTIVE", 0.0) > 0.0;
     test
 }
 
@@ -157,7 +159,7 @@ fn the_1x19_cell_over_whole_inner_pitches_does_not_depend_on_the_length() {
 /// K_min. A study (the Strands of several layers page of the manual): STAGES penalty stages
 /// (default 2).
 #[test]
-#[ignore = "study: T, SPP, PITCHES, PEN, K, RULE, STAGES, INNER, OUTER, PROFILE, PITCHES_ONLY from the environment"]
+#[ignore = "study: T, SPP, PITCHES, PEN, K, RULE, STAGES, ACTIVE, INNER, OUTER, PROFILE, PITCHES_ONLY from the environment"]
 fn probe() {
     let s = strand(env("INNER", 8.0), env("OUTER", 12.0));
     let t = env("T", 1.0);
@@ -259,4 +261,236 @@ fn profile(s: &Strand, t: f64, k_min: f64, k_law: f64) {
             );
         }
     }
+}
+
+/// The strand of a layer-split control (`LAYERS`): `both` the 1+6+12 strand of [`strand`];
+/// `inner` its core and inner layer alone; `outer` its outer layer alone on a core as wide as
+/// the core and inner layer (9.3 mm: the same helix radius 6.15 mm). `OUTER_E` and `CORE_E`
+/// `INNER_E` scale the outer layer's, the core's and the inner layer's
+/// Young's modulus.
+fn control_strand() -> Strand {
+    let which = std::env::var("LAYERS").unwrap_or_else(|_| "both".into());
+    control_strand_of(
+        &which,
+        env("INNER", 8.0),
+        env("OUTER", 12.0),
+        [env("CORE_E", 1.0), env("INNER_E", 1.0), env("OUTER_E", 1.0)],
+    )
+}
+
+/// The strand of [`control_strand`]: `which` layers, laid at `inner` and `outer` deg, the
+/// core's, inner and outer layer's Young's modulus scaled by `scale`.
+fn control_strand_of(which: &str, inner: f64, outer: f64, scale: [f64; 3]) -> Strand {
+    let scaled = |f: f64| Material {
+        youngs_modulus: soft().youngs_modulus * f,
+        ..soft()
+    };
+    let mut inner_layer = layer(6, 3.0e-3, inner, LayDirection::Right);
+    inner_layer.wire.material = scaled(scale[1]);
+    let mut outer_layer = layer(12, 3.0e-3, outer, LayDirection::Left);
+    outer_layer.wire.material = scaled(scale[2]);
+    let (core_d, layers) = match which {
+        "inner" => (3.3e-3, vec![inner_layer]),
+        "outer" => (9.3e-3, vec![outer_layer]),
+        _ => (3.3e-3, vec![inner_layer, outer_layer]),
+    };
+    Strand::new(StrandSpec {
+        length: 1.0,
+        core: WireSpec {
+            diameter: core_d,
+            material: scaled(scale[0]),
+        },
+        layers,
+        friction: 0.0,
+    })
+    .unwrap()
+}
+
+/// The moment at the core's cuts in rest x `[lo, hi]` split by layer (0 the core), averaged
+/// over the cuts (N m): each wire cut at its joint nearest the cut plane, its joint moment
+/// plus its joint force times the arm from the core's joint point (loads of the part after
+/// the cut on the part before), as the `layer_moments` example of `strand-scene` splits it.
+fn layer_split(
+    model: &strand_fine::FineModel,
+    state: &strand_fine::ModelState,
+    (lo, hi): (f64, f64),
+) -> Vec<f64> {
+    let layers = model.wires.iter().map(|w| w.layer).max().unwrap_or(0);
+    let mut parts = vec![0.0; layers + 1];
+    let core = &model.wires[0];
+    let cs = &state.wires[0].poses;
+    let mut cuts = 0;
+    for j in 0..core.chain.joints.len() {
+        let x = core.chain.rest[j].point(&core.chain.joints[j].offset_a).x;
+        if x < lo - 1e-9 || x > hi + 1e-9 {
+            continue;
+        }
+        let jt = &core.chain.joints[j];
+        let c = cs[j].point(&jt.offset_a);
+        let normal = (cs[j].tangent() + cs[j + 1].tangent()).normalize();
+        let l = jt.evaluate(&cs[j], &cs[j + 1]);
+        parts[0] += (l.torque_a + (cs[j].position - c).cross(&l.force_a)).z;
+        for (w, ws) in model.wires.iter().zip(&state.wires).skip(1) {
+            let (k, _) = w
+                .chain
+                .joints
+                .iter()
+                .enumerate()
+                .map(|(k, jw)| (k, (ws.poses[k].point(&jw.offset_a) - c).dot(&normal).abs()))
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .unwrap();
+            let jw = &w.chain.joints[k];
+            let lw = jw.evaluate(&ws.poses[k], &ws.poses[k + 1]);
+            let q = ws.poses[k].point(&jw.offset_a);
+            parts[w.layer] += (lw.torque_a
+                + (ws.poses[k].position - q).cross(&lw.force_a)
+                + (q - c).cross(&lw.force_a))
+            .z;
+        }
+        cuts += 1;
+    }
+    parts.iter().map(|p| p / cuts as f64).collect()
+}
+
+/// Layer by layer, the fine cell's softening against the law's terms: the cell of [`cell`]
+/// on [`control_strand`] at the strains `EPS0` (default 1.55e-6, the 1+6+12 strand's at
+/// 0.01 N) and `EPS` (default 1.55e-4, at 1 N), over the longest centred window of whole
+/// pitches of the layer on the core; prints each layer's share of M / kappa (its part of the
+/// cut moment, [`layer_split`]) and its clamp tension against the law's (the core's
+/// `E_c I_c (1 + eps)`, each layer's thin-rod stiffness, the tension `m E A xi cos(beta)` of
+/// the stretched helix).
+#[test]
+#[ignore = "study: LAYERS, OUTER_E, CORE_E, INNER_E, EPS0, EPS, SPP, PITCHES, PEN, STAGES, K from the environment"]
+fn layer_softening() {
+    use strand_core::stretched_bending::layer_stiffness;
+    let s = control_strand();
+    let ea = s.axial_stiffness();
+    let core = s.core();
+    let pitch = s.layers().iter().map(|l| l.pitch).fold(0.0, f64::max);
+    let first = s.layers()[0].pitch;
+    let pitches = env("PITCHES", 4.0) as usize;
+    let len = pitches as f64 * pitch;
+    let n = ((len / first - 1.0).max(1.0)) as usize;
+    let window = BendingTest::centred_window(len, first, n);
+    let mut rows = Vec::new();
+    for eps in [env("EPS0", 1.55e-6), env("EPS", 1.55e-4)] {
+        let t = eps * ea;
+        let start = std::time::Instant::now();
+        let test = cell(
+            t,
+            (pitches, env("SPP", 12.0) as usize),
+            env("PEN", 1e-5),
+            env("STAGES", 2.0) as usize,
+            env("K", 0.1),
+        );
+        let (_, model, state) = test.run_with_state(&s).expect("bending test");
+        let k = BendingTest::window_stiffness(&model, &state, window);
+        let parts = layer_split(&model, &state, window);
+        let sum: f64 = parts.iter().sum();
+        let tensions = BendingTest::clamp_tensions(&model, &state);
+        let mut per_layer = vec![0.0; parts.len()];
+        for (w, f) in model.wires.iter().zip(&tensions) {
+            per_layer[w.layer] += f;
+        }
+        let mut law = vec![core.material.youngs_modulus * core.inertia() * (1.0 + eps)];
+        let mut law_t = vec![core.material.youngs_modulus * core.area() * eps];
+        for l in s.layers() {
+            law.push(layer_stiffness(l, eps));
+            let (sa, ca) = l.lay_angle().sin_cos();
+            let a = 1.0 + eps;
+            let len = a.hypot(sa / ca);
+            let xi = len * ca - 1.0;
+            law_t.push(
+                l.wires() as f64
+                    * l.spec.wire.material.youngs_modulus
+                    * l.spec.wire.area()
+                    * xi
+                    * a
+                    / len,
+            );
+        }
+        println!(
+            "strain {eps:.3e} (T {t:.4} N, {:.1} s): window {n} pitches of the first layer; \
+             M/kappa {k:.6e} N m^2, law {:.6e}",
+            start.elapsed().as_secs_f64(),
+            law.iter().sum::<f64>()
+        );
+        for j in 0..parts.len() {
+            println!(
+                "  part {j}: fine {:.6e} law {:.6e} N m^2; tension fine {:.6e} law {:.6e} N",
+                k * parts[j] / sum,
+                law[j],
+                per_layer[j],
+                law_t[j]
+            );
+        }
+        rows.push((
+            k,
+            parts.iter().map(|p| k * p / sum).collect::<Vec<_>>(),
+            law,
+        ));
+    }
+    let (a, b) = (&rows[0], &rows[1]);
+    println!(
+        "softening (K(EPS0) - K(EPS)), N m^2: total fine {:.4e} law {:.4e}",
+        a.0 - b.0,
+        a.2.iter().sum::<f64>() - b.2.iter().sum::<f64>()
+    );
+    for j in 0..a.1.len() {
+        println!(
+            "  part {j}: fine {:.4e} law {:.4e}",
+            a.1[j] - b.1[j],
+            a.2[j] - b.2[j]
+        );
+    }
+}
+
+/// The cell's M / kappa (N m^2) on `s` at the strain `eps`, `pitches` pitches of `spp`
+/// segments (penetration 1e-5 of the diameter, two penalty stages, 0.1 1/m), over the
+/// centred window of `pitches - 1` pitches.
+fn one_layer_window_stiffness(s: &Strand, eps: f64, pitches: usize, spp: usize) -> f64 {
+    let (_, model, state) = cell(eps * s.axial_stiffness(), (pitches, spp), 1e-5, 2, 0.1)
+        .run_with_state(s)
+        .expect("bending test");
+    let pitch = s.layers()[0].pitch;
+    let window = BendingTest::centred_window(pitches as f64 * pitch, pitch, pitches - 1);
+    BendingTest::window_stiffness(&model, &state, window)
+}
+
+/// The 1+6+12 strand's core and inner layer alone (six 3.0 mm wires at 8 deg on the 3.3 mm
+/// core): the fine cell softens less than the thin-rod term by an end effect that falls as
+/// the inverse of the window's length W (in pitches, the cell's length less a pitch). From
+/// the strain 1.55e-6 to 1.55e-4 (0.01 to 1 N on the 1+6+12 strand), 24 segments per pitch,
+/// the fine drop is 0.851, 0.547, 0.407, 0.325, 0.272, 0.234, 0.154, 0.118 (x 1e-6 N m^2)
+/// short of the law's 4.1248e-6 at 3, 4, 5, 6, 7, 8, 12, 16 pitches; less the mesh error
+/// (the drop at 4 pitches moves by +1.6e-8 from 24 to 96 segments per pitch), the shortfall
+/// times W is 1.59, 1.55, 1.53, 1.52, 1.53 (x 1e-6) at 4, 6, 8, 12, 16 pitches (`LAYERS=inner
+/// PITCHES=N SPP=24 cargo test --release -p strand-fine --test multilayer_softening
+/// layer_softening -- --ignored --nocapture`). So the drops at 8 and 16 pitches, extrapolated
+/// in 1 / W, are the long strand's: they meet the thin-rod term within the drop's measured
+/// mesh error at 24 segments per pitch (0.45 %, the change to 96) plus the spread of the
+/// shortfall times W from 8 to 16 pitches (1 % of the 16-pitch shortfall, 3e-4 of the drop).
+/// The 16-pitch drop itself, 2.9 % short, fails the same check.
+#[test]
+fn inner_layer_softening_reaches_the_thin_rod_term_with_the_length() {
+    let s = control_strand_of("inner", 8.0, 12.0, [1.0; 3]);
+    let (eps0, eps) = (1.55e-6, 1.55e-4);
+    let drop = |pitches: usize| {
+        one_layer_window_stiffness(&s, eps0, pitches, 24)
+            - one_layer_window_stiffness(&s, eps, pitches, 24)
+    };
+    let (d8, d16) = (drop(8), drop(16));
+    let (w8, w16) = (7.0, 15.0);
+    let long = (w16 * d16 - w8 * d8) / (w16 - w8);
+    let law = stretched_min_bending_stiffness(&s, eps0) - stretched_min_bending_stiffness(&s, eps);
+    println!(
+        "drop: 8 pitches {d8:.5e}, 16 pitches {d16:.5e}, extrapolated {long:.5e}, law {law:.5e} \
+         N m^2 ({:+.3e} relative)",
+        long / law - 1.0
+    );
+    assert!(
+        (long / law - 1.0).abs() < 4.5e-3 + 3e-4,
+        "{:+.3e} of the law's drop",
+        long / law - 1.0
+    );
 }
