@@ -68,9 +68,9 @@
 //!
 //! Nor, on the Fig. 7 strand, a quasi-static load continuation from the straight strand
 //! ([`SettledOptions::load_continuation`], off by default; [`crate::load_continuation`]): it
-//! reaches full load on a short strand and replaces the motion there, but stalls at a tenth to
-//! a third of the load on the Fig. 7 strand; the motion then runs from the straight strand as
-//! without it.
+//! reaches full load on a short strand and replaces the motion there, but on the Fig. 7 strand it
+//! stalls or crawls short of full load at a higher cost than the whole settle; the motion then
+//! runs from the straight strand as without it.
 
 use crate::dynamics::Integrator;
 use crate::load_continuation::{LoadContinuationReport, load_continuation};

@@ -10,7 +10,8 @@
 //! The same for the quasi-static load continuation from the straight strand
 //! ([`SettledOptions::load_continuation`]): without friction on the settle's equilibrium, with
 //! friction on a static state (every segment within the rest allowance, every closed contact
-//! inside its friction cone), and a failed continuation leaves the settle's result as it was.
+//! inside its friction cone), a failed continuation leaves the settle's result as it was, and
+//! the result is the same on one and three threads.
 
 use nalgebra::Vector3;
 use strand_core::{Strand, StrandSpec};
@@ -311,5 +312,32 @@ fn a_failed_load_continuation_leaves_the_settle_as_it_was() {
     assert!(
         state.contacts == motion.contacts,
         "contact histories differ from the settle's"
+    );
+}
+
+#[test]
+fn the_load_continuation_does_not_depend_on_the_thread_count() {
+    let m = strand_model(0.3);
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut state = m.rest_state();
+            let r = solve_settled(&m, &mut state, &loaded(), &mut |_, _, _| {}).unwrap();
+            (state, r.iterations)
+        })
+    };
+    let (one, it1) = run(1);
+    let (three, it3) = run(3);
+    assert_eq!(it1, it3);
+    assert!(
+        one.wires == three.wires,
+        "poses differ between 1 and 3 threads"
+    );
+    assert!(
+        one.contacts == three.contacts,
+        "contact histories differ between 1 and 3 threads"
     );
 }
