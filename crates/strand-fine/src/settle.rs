@@ -526,7 +526,9 @@ pub struct SettledReport {
     pub residual: f64,
     /// The pseudo-transient continuation, if one ran.
     pub pseudo_transient: Option<PseudoTransientReport>,
-    /// The quasi-static load continuation, if one ran.
+    /// The quasi-static load continuation, if one ran. If it reached full load, no motion
+    /// ran: `settle` has no steps, its residual and scales are Newton's and its allowance ratio
+    /// is 0.
     pub load_continuation: Option<LoadContinuationReport>,
 }
 
