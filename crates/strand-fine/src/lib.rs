@@ -41,6 +41,7 @@ pub mod contact;
 pub mod dynamics;
 pub mod interlayer;
 pub mod joint;
+pub mod load_continuation;
 pub mod model;
 pub mod motion;
 pub mod penalty;

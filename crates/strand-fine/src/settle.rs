@@ -65,8 +65,15 @@
 //! at 100 or 1000 times the allowance and lands on the motion's equilibrium, with friction it
 //! stalls and the motion goes on from the handover state as without it (the same result, bit
 //! for bit).
+//!
+//! Nor, on the Fig. 7 strand, a quasi-static load continuation from the straight strand
+//! ([`SettledOptions::load_continuation`], off by default; [`crate::load_continuation`]): it
+//! reaches full load on a short strand and replaces the motion there, but on the Fig. 7 strand it
+//! stalls or crawls short of full load at a higher cost than the whole settle; the motion then
+//! runs from the straight strand as without it.
 
 use crate::dynamics::Integrator;
+use crate::load_continuation::{LoadContinuationReport, load_continuation};
 use crate::model::{FineModel, ModelState};
 use crate::pseudo_transient::{PseudoTransientOptions, PseudoTransientReport, pseudo_transient};
 use crate::spectrum::lanczos_highest_frequency;
@@ -465,6 +472,13 @@ pub struct SettledOptions {
     /// (default): the motion goes on to the settle's tolerance. If the continuation or the
     /// polish after it fails, the motion goes on from the handover state as without it.
     pub pseudo_transient: Option<PseudoTransientOptions>,
+    /// Quasi-static load continuation first ([`load_continuation`]): Newton load stepping
+    /// ([`solve_static`] with these options) from the state given, the straight strand; if it
+    /// reaches full load, its state is the result and no motion runs; if it fails, the state
+    /// given is restored and the settle runs from it as without the option (the same result,
+    /// bit for bit). `None` (default): no continuation. A study option (module docs of
+    /// [`load_continuation`]: it does not reach full load on the Fig. 7 strand).
+    pub load_continuation: Option<StaticOptions>,
     /// On a model with wire-to-wire links, Newton is tried from the state where the motion
     /// stopped without coming to rest (step or time limit), and its converged state is the
     /// result (default true; models without links are not affected). On the 1+6+12
@@ -488,6 +502,7 @@ impl Default for SettledOptions {
             retry_interval: 0.02,
             retry_time: 0.5,
             pseudo_transient: None,
+            load_continuation: None,
             polish_stalled: true,
         }
     }
@@ -511,6 +526,10 @@ pub struct SettledReport {
     pub residual: f64,
     /// The pseudo-transient continuation, if one ran.
     pub pseudo_transient: Option<PseudoTransientReport>,
+    /// The quasi-static load continuation, if one ran. If it reached full load, no motion
+    /// ran: `settle` has no steps, its residual and scales are Newton's and its allowance ratio
+    /// is 0.
+    pub load_continuation: Option<LoadContinuationReport>,
 }
 
 /// Static equilibrium under the model's gravity from the rest state in `state`: damped
@@ -526,6 +545,35 @@ pub fn solve_settled(
     options: &SettledOptions,
     progress: &mut dyn FnMut(&ModelState, f64, f64),
 ) -> Result<SettledReport, SettleError> {
+    let mut loaded = None;
+    if let Some(lc) = &options.load_continuation {
+        let (report, converged) = load_continuation(model, state, lc);
+        loaded = Some(report);
+        if let Some(p) = converged {
+            let (damping_rate, ramp_time) = damping_and_ramp(model, &options.settle);
+            return Ok(SettledReport {
+                settle: SettleReport {
+                    steps: 0,
+                    time: 0.0,
+                    time_step: 0.0,
+                    discarded_steps: 0,
+                    damping_rate,
+                    ramp_time,
+                    residual: p.residual,
+                    allowance_ratio: 0.0,
+                    force_scale: p.force_scale,
+                    roundoff: p.roundoff,
+                },
+                polish: Some(p),
+                attempts: 1,
+                iterations: p.iterations,
+                tolerance: lc.tolerance,
+                residual: p.residual,
+                pseudo_transient: None,
+                load_continuation: loaded,
+            });
+        }
+    }
     let moving = motion_model(model, &options.settle);
     let handover = options
         .pseudo_transient
@@ -558,6 +606,7 @@ pub fn solve_settled(
                 tolerance: options.polish.tolerance,
                 residual: p.residual,
                 pseudo_transient: continuation,
+                load_continuation: loaded,
             });
         }
         // The motion goes on from the handover state to the settle's tolerance.
@@ -605,6 +654,7 @@ pub fn solve_settled(
                     tolerance: options.polish.tolerance,
                     residual: p.residual,
                     pseudo_transient: continuation,
+                    load_continuation: loaded,
                 });
             }
             Err(e) => {
@@ -629,6 +679,7 @@ pub fn solve_settled(
                 tolerance: options.settle.tolerance,
                 residual: settled.residual,
                 pseudo_transient: continuation,
+                load_continuation: loaded,
             });
         }
         // The motion goes on from the state it stopped at (momenta included).
@@ -702,6 +753,7 @@ fn polish_stalled(
                 tolerance: options.polish.tolerance,
                 residual: p.residual,
                 pseudo_transient: None,
+                load_continuation: None,
             })
         }
         Err(_) => {

@@ -6,12 +6,19 @@
 //! * with friction the state depends on the load path, so the check is the model's own loads
 //!   at the result, evaluated afresh: every segment's force and torque within the settle's
 //!   tolerance of the largest segment weight.
+//!
+//! The same for the quasi-static load continuation from the straight strand
+//! ([`SettledOptions::load_continuation`]): without friction on the settle's equilibrium, with
+//! friction on a static state (every segment within the rest allowance, every closed contact
+//! inside its friction cone), a failed continuation leaves the settle's result as it was, and
+//! the result is the same on one and three threads.
 
 use nalgebra::Vector3;
 use strand_core::{Strand, StrandSpec};
 use strand_fine::pseudo_transient::PseudoTransientOptions;
 use strand_fine::{
-    ContactOptions, Discretisation, FineModel, ModelState, SettledOptions, Support, solve_settled,
+    ContactOptions, ContactState, Discretisation, FineModel, ModelState, SettledOptions,
+    StaticOptions, Support, solve_settled,
 };
 
 /// The short Table 1 strand of `tests/settled.rs` (0.1 m, 12 segments a wire), clamped at one
@@ -182,4 +189,155 @@ fn with_friction_the_continuation_meets_the_residual_of_the_models_own_loads() {
         assert_eq!(tip(&m, &state), tip(&m, &motion));
         assert_eq!(state.wires, motion.wires);
     }
+}
+
+/// The quasi-static load continuation from the straight strand in five load steps, with
+/// one penalty stage.
+fn loaded() -> SettledOptions {
+    SettledOptions {
+        load_continuation: Some(StaticOptions {
+            load_steps: 5,
+            penalty_stages: 1,
+            ..StaticOptions::default()
+        }),
+        ..SettledOptions::default()
+    }
+}
+
+/// Largest ratio of a closed contact's tangential force to its Coulomb cap `mu N` at
+/// `state`, the model's own loads evaluated afresh.
+fn cone_ratio(m: &FineModel, state: &ModelState, mu: f64) -> f64 {
+    let mut loads = m.load_buffers();
+    m.compute_loads(state, 1.0, &mut loads);
+    loads
+        .iter()
+        .flat_map(|l| l.contacts.iter())
+        .filter(|c| c.state != ContactState::Open)
+        .map(|c| {
+            let cap = mu * c.normal_force;
+            if cap > 0.0 {
+                c.tangential_force.norm() / cap
+            } else if c.tangential_force.norm() > 0.0 {
+                f64::INFINITY
+            } else {
+                0.0
+            }
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn without_friction_the_load_continuation_lands_on_the_unique_equilibrium() {
+    let m = strand_model(0.0);
+    let mut state = m.rest_state();
+    let r = solve_settled(&m, &mut state, &loaded(), &mut |_, _, _| {}).unwrap();
+    let (motion, _, motion_steps) = settled(&m, &SettledOptions::default());
+    let (a, b) = (tip(&m, &state), tip(&m, &motion));
+    let drop = -b.y;
+    println!(
+        "continuation {:?}, Newton {} iterations; the motion {motion_steps} steps; tips {a:?} / \
+         {b:?}: {:.3e} m apart",
+        r.load_continuation,
+        r.iterations,
+        (a - b).norm()
+    );
+    assert!(r.load_continuation.expect("it ran").converged);
+    assert_eq!(r.settle.steps, 0, "no motion");
+    // The bound of `without_friction_the_fast_settle_lands_on_the_unique_equilibrium`: both
+    // states within 1e-9 of the weight (plus round-off) on every segment.
+    assert!(
+        (a - b).norm() <= 1e-7 * drop,
+        "tips {:.3e} m apart, beyond 1e-7 of the drop {drop:.3e} m",
+        (a - b).norm()
+    );
+    // Newton's criterion: within the tolerance of the weight plus the round-off allowance
+    // (100 ulps of the largest coordinate on the stiffest joint spring), here 2e-7 of it.
+    let p = r.polish.expect("converged");
+    let allowed = r.tolerance + p.roundoff / p.force_scale;
+    let res = scaled_residual(&m, &state);
+    assert!(
+        res <= allowed,
+        "scaled residual {res:.3e} beyond {allowed:.3e}"
+    );
+}
+
+#[test]
+fn with_friction_the_load_continuation_lands_on_a_static_state() {
+    let mu = 0.3;
+    let m = strand_model(mu);
+    let mut state = m.rest_state();
+    let r = solve_settled(&m, &mut state, &loaded(), &mut |_, _, _| {}).unwrap();
+    let (motion, _, _) = settled(&m, &SettledOptions::default());
+    let res = scaled_residual(&m, &state);
+    let cone = cone_ratio(&m, &state, mu);
+    println!(
+        "continuation {:?}, Newton {} iterations; scaled residual {res:.3e}, largest |F_t| / mu \
+         N {cone:.6}; tip {:.3e} m from the settle's",
+        r.load_continuation,
+        r.iterations,
+        (tip(&m, &state) - tip(&m, &motion)).norm()
+    );
+    assert!(r.load_continuation.expect("it ran").converged);
+    // Every segment within the settle's rest allowance (1e-4 of the largest weight), every
+    // closed contact inside its friction cone (the cap, to the rounding of its product).
+    assert!(res <= 1e-4, "scaled residual {res:.3e}");
+    assert!(cone <= 1.0 + 1e-12, "|F_t| / mu N {cone}");
+}
+
+#[test]
+fn a_failed_load_continuation_leaves_the_settle_as_it_was() {
+    let m = strand_model(0.3);
+    // Twenty Newton iterations a step and no halving: the first of five load steps converges
+    // (its contact histories committed), the second does not.
+    let opts = SettledOptions {
+        load_continuation: Some(StaticOptions {
+            load_steps: 5,
+            max_iterations: 20,
+            min_increment: 0.2,
+            ..StaticOptions::default()
+        }),
+        ..SettledOptions::default()
+    };
+    let mut state = m.rest_state();
+    let r = solve_settled(&m, &mut state, &opts, &mut |_, _, _| {}).unwrap();
+    let lc = r.load_continuation.expect("it ran");
+    assert!(!lc.converged);
+    assert_eq!(lc.load_steps, 1, "{lc:?}");
+    let (motion, _, motion_steps) = settled(&m, &SettledOptions::default());
+    assert_eq!(r.settle.steps, motion_steps);
+    assert!(
+        state.wires == motion.wires,
+        "poses differ from the settle's"
+    );
+    assert!(
+        state.contacts == motion.contacts,
+        "contact histories differ from the settle's"
+    );
+}
+
+#[test]
+fn the_load_continuation_does_not_depend_on_the_thread_count() {
+    let m = strand_model(0.3);
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut state = m.rest_state();
+            let r = solve_settled(&m, &mut state, &loaded(), &mut |_, _, _| {}).unwrap();
+            (state, r.iterations)
+        })
+    };
+    let (one, it1) = run(1);
+    let (three, it3) = run(3);
+    assert_eq!(it1, it3);
+    assert!(
+        one.wires == three.wires,
+        "poses differ between 1 and 3 threads"
+    );
+    assert!(
+        one.contacts == three.contacts,
+        "contact histories differ between 1 and 3 threads"
+    );
 }
