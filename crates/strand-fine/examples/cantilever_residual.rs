@@ -1,5 +1,5 @@
 //! Where the residual of a stalled multi-layer settle sits: the 1+6+12 cantilever of
-//! `validation/multilayer/vs-fine-1x19-cantilever.json` (0.08 m, core 2.2 mm, 6 + 12 wires of
+//! `validation/vs-fine-1x19-cantilever.json` (0.08 m, core 2.2 mm, 6 + 12 wires of
 //! 1.5 mm at 20 deg right / left, E 5e7 Pa, clamped at its start, g = 10 m/s^2 across),
 //! `SEGMENTS` (12) a wire, damped motion for `STEPS` (150,000) explicit steps; `FRICTION`
 //! (0.3) sets mu, `LAYERS` (2) keeps the first layers only. Prints, every `EVERY` (10,000) steps, the residual's ratio to the settle's

@@ -1,4 +1,4 @@
-//! The 1+6+12 cantilever (`validation/multilayer/vs-fine-1x19-cantilever.json`, 12 segments a
+//! The 1+6+12 cantilever (`validation/vs-fine-1x19-cantilever.json`, 12 segments a
 //! wire): the damped motion stands still without meeting its rest criterion (segments
 //! vibrating against contacts that open and close), and
 //! [`SettledOptions::polish_stalled`] starts Newton from where it stopped. The result is

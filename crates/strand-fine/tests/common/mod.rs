@@ -54,7 +54,7 @@ pub fn secant_stiffness(test: &BendingTest, s: &Strand) -> f64 {
         .secant_stiffness()
 }
 
-/// The fine model of `validation/multilayer/vs-fine-1x19-cantilever.json`: 0.08 m, core
+/// The fine model of `validation/vs-fine-1x19-cantilever.json`: 0.08 m, core
 /// 2.2 mm, 6 + 12 wires of 1.5 mm at 20 deg right / left (the first `layers` of the two),
 /// E = 5e7 Pa, friction `friction`, `segments` a wire, clamped at its start and free at its
 /// end, g = 10 m/s^2 along -y, the default contacts.
