@@ -12,11 +12,12 @@
 //! ([`Pressure`]). The arc is then an equilibrium whatever the bending stiffness, the
 //! internal moment is uniform, and the ends impose no shear.
 //!
-//! Measured (SI): the internal bending moment at cuts through the core's joints in the middle
-//! pitches, from the equilibrium of the part of the strand before the cut (clamp reactions
-//! and pressure loads), averaged over the cuts; the curvature of the core's centreline over
-//! the same pitches (tangent angle change over arc length); the moment at the clamp; the
-//! tension from the clamp reaction.
+//! Measured (SI): the internal bending moment at cuts through the core's joints, from the
+//! equilibrium of the part of the strand before the cut (clamp reactions and pressure loads),
+//! averaged over the test's window ([`BendingTest::window`]: the middle pitches of a `1+m`
+//! strand, whole pitches of every layer on several layers); the curvature of the core's
+//! centreline over the same window (tangent angle change over arc length); the moment at the
+//! clamp; the tension from the clamp reaction.
 
 use nalgebra::{UnitQuaternion, Vector3};
 use strand_core::{BondedOptions, Strand, StrandSpec};
@@ -125,9 +126,9 @@ impl BendingTest {
 pub struct BendingPoint {
     /// Curvature imposed by the end plate (1/m).
     pub imposed_curvature: f64,
-    /// Curvature of the core's centreline over the middle pitches (1/m).
+    /// Curvature of the core's centreline over the test's window (1/m).
     pub curvature: f64,
-    /// Internal bending moment averaged over the middle pitches (N m).
+    /// Internal bending moment averaged over the test's window (N m).
     pub moment: f64,
     /// Bending moment at the clamp (N m).
     pub clamp_moment: f64,
@@ -529,7 +530,7 @@ impl BendingTest {
     /// with the cut's rest x (m): from the equilibrium of the part of the strand before the
     /// cut (clamp reactions and pressure loads), about the core's centreline at the cut. The
     /// first entry (x = 0) is the moment at the clamp. The test's moment is the mean over the
-    /// cuts in the middle pitches.
+    /// cuts in the test's window ([`BendingTest::window`]).
     pub fn moment_profile(model: &FineModel, state: &ModelState) -> Vec<(f64, f64)> {
         Self::moment_profile_of(model, state, &Self::external_loads(model, state).0)
     }
@@ -557,12 +558,12 @@ impl BendingTest {
     /// cuts) over the core's mean curvature there (the change of its tangent angle, linear
     /// between segment centres, over the window's arc length on the stretched core).
     ///
-    /// The test's own figure ([`BendingPoint::secant_stiffness`]) takes both over whole pitches
-    /// of the longest-pitch layer. On a strand of several layers the core's curvature
-    /// oscillates with the pitch of the layer on it (about 2.5 % on the 1+6+12 cell), so that
-    /// figure depends on where the window falls; a window of a whole number of that layer's
-    /// pitches ([`BendingTest::centred_window`]) removes it (the Strands of several layers
-    /// page of the manual).
+    /// On a strand of several layers the core's curvature oscillates with the pitch of the
+    /// layer on it (about 2.5 % on the 1+6+12 cell), so a figure over whole pitches of the
+    /// longest-pitch layer alone depends on where the window falls; a window of a whole number
+    /// of that layer's pitches ([`BendingTest::centred_window`]) removes most of it, and the
+    /// test's own figure ([`BendingPoint::secant_stiffness`]) takes whole pitches of every
+    /// layer ([`BendingTest::window`]; the Strands of several layers page of the manual).
     pub fn window_stiffness(model: &FineModel, state: &ModelState, (lo, hi): (f64, f64)) -> f64 {
         let m = Self::moment_profile(model, state);
         let mut integral = 0.0;
