@@ -98,7 +98,7 @@ impl PitchWindow {
     /// Rest x of `per_box` points in each of the first box's shifted windows (midpoint
     /// rule): their plain mean of a function is its weighted mean over the window (exact for
     /// a sum of functions each periodic with one layer's pitch, up to harmonic `per_box` of
-    /// the first box's layer and [`SHIFTS`] of the others).
+    /// the first box's layer and 32 of the others).
     pub fn stations(&self, per_box: usize) -> Vec<f64> {
         self.boxes()
             .into_iter()
