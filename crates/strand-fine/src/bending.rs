@@ -12,17 +12,19 @@
 //! ([`Pressure`]). The arc is then an equilibrium whatever the bending stiffness, the
 //! internal moment is uniform, and the ends impose no shear.
 //!
-//! Measured (SI): the internal bending moment at cuts through the core's joints in the middle
-//! pitches, from the equilibrium of the part of the strand before the cut (clamp reactions
-//! and pressure loads), averaged over the cuts; the curvature of the core's centreline over
-//! the same pitches (tangent angle change over arc length); the moment at the clamp; the
-//! tension from the clamp reaction.
+//! Measured (SI): the internal bending moment at cuts through the core's joints, from the
+//! equilibrium of the part of the strand before the cut (clamp reactions and pressure loads),
+//! averaged over the test's window ([`BendingTest::window`]: the middle pitches of a `1+m`
+//! strand, whole pitches of every layer on several layers); the curvature of the core's
+//! centreline over the same window (tangent angle change over arc length); the moment at the
+//! clamp; the tension from the clamp reaction.
 
 use nalgebra::{UnitQuaternion, Vector3};
 use strand_core::{BondedOptions, Strand, StrandSpec};
 
 use crate::contact::{ContactOptions, ContactState};
 use crate::model::{Discretisation, FineModel, ModelState, SpringScale, Support};
+use crate::pitch_window::PitchWindow;
 use crate::segment::Pose;
 use crate::statics::{StaticError, StaticOptions, solve_static};
 
@@ -124,9 +126,9 @@ impl BendingTest {
 pub struct BendingPoint {
     /// Curvature imposed by the end plate (1/m).
     pub imposed_curvature: f64,
-    /// Curvature of the core's centreline over the middle pitches (1/m).
+    /// Curvature of the core's centreline over the test's window (1/m).
     pub curvature: f64,
-    /// Internal bending moment averaged over the middle pitches (N m).
+    /// Internal bending moment averaged over the test's window (N m).
     pub moment: f64,
     /// Bending moment at the clamp (N m).
     pub clamp_moment: f64,
@@ -372,10 +374,9 @@ impl BendingTest {
             kappa: 0.0,
             eps: 0.0,
         };
-        let (lo, hi) = (
-            (self.pitches as f64 / 2.0 - 1.0).max(1.0) * pitch,
-            (self.pitches as f64 / 2.0 + 1.0).min(self.pitches as f64 - 1.0) * pitch,
-        );
+        let window = self.window_on(&strand, pitch);
+        // One layer: the test's original measure over its box, bit for bit.
+        let one_layer = (strand.layers().len() == 1).then(|| self.one_layer_window(pitch));
         let mut out = Vec::new();
         let steps = std::iter::once(0.0).chain(self.curvatures.iter().copied());
         for kappa in steps {
@@ -421,11 +422,53 @@ impl BendingTest {
                     }
                 }
             }
-            let point = self.measure(&model, &state, kappa, iterations, (lo, hi));
+            let point = self.measure(&model, &state, kappa, iterations, (&window, one_layer));
             observe(&point, &model, &state);
             out.push(point);
         }
         Ok((out, model, state))
+    }
+
+    /// The window the test takes its moment and curvature over on `strand` (its length
+    /// replaced by [`BendingTest::pitches`] pitches of the longest-pitch layer), rest x (m).
+    ///
+    /// * One layer: whole pitches, centred, one pitch clear of each clamp, at most two (on 3
+    ///   pitches the middle one; from 4 on the middle two): a box.
+    /// * Several layers: whole pitches of every layer ([`PitchWindow::for_layers`]): the
+    ///   core's curvature oscillates with the pitch of each layer (about +-2.5 % with the
+    ///   layer on the core of the 1+6+12 strand), and a window of whole pitches of the
+    ///   longest-pitch layer alone spans a fractional number of the others' pitches, which
+    ///   makes the figure depend on the strand's length (7e-3 of K_min between 3, 4, 5 and 6
+    ///   pitches of a 1+6+12 strand; the Strands of several layers page).
+    pub fn window(&self, strand: &Strand) -> Result<PitchWindow, BendingError> {
+        let pitch = strand
+            .layers()
+            .iter()
+            .map(|l| l.pitch)
+            .reduce(f64::max)
+            .ok_or(BendingError::NoLayer)?;
+        Ok(self.window_on(strand, pitch))
+    }
+
+    /// [`BendingTest::window`] with the longest pitch `pitch` (m).
+    fn window_on(&self, strand: &Strand, pitch: f64) -> PitchWindow {
+        if let [_] = strand.layers() {
+            let (lo, hi) = self.one_layer_window(pitch);
+            return PitchWindow {
+                centre: 0.5 * (lo + hi),
+                boxes: vec![hi - lo],
+            };
+        }
+        let pitches: Vec<f64> = strand.layers().iter().map(|l| l.pitch).collect();
+        PitchWindow::for_layers(&pitches, pitch * self.pitches as f64)
+    }
+
+    /// The one-layer window: rest x from `lo` to `hi` (m), whole pitches `pitch` (m).
+    fn one_layer_window(&self, pitch: f64) -> (f64, f64) {
+        (
+            (self.pitches as f64 / 2.0 - 1.0).max(1.0) * pitch,
+            (self.pitches as f64 / 2.0 + 1.0).min(self.pitches as f64 - 1.0) * pitch,
+        )
     }
 
     /// One load step to curvature `kappa`: remaps the state, moves the end plate, sets the
@@ -498,7 +541,7 @@ impl BendingTest {
     /// with the cut's rest x (m): from the equilibrium of the part of the strand before the
     /// cut (clamp reactions and pressure loads), about the core's centreline at the cut. The
     /// first entry (x = 0) is the moment at the clamp. The test's moment is the mean over the
-    /// cuts in the middle pitches.
+    /// cuts in the test's window ([`BendingTest::window`]).
     pub fn moment_profile(model: &FineModel, state: &ModelState) -> Vec<(f64, f64)> {
         Self::moment_profile_of(model, state, &Self::external_loads(model, state).0)
     }
@@ -526,12 +569,12 @@ impl BendingTest {
     /// cuts) over the core's mean curvature there (the change of its tangent angle, linear
     /// between segment centres, over the window's arc length on the stretched core).
     ///
-    /// The test's own figure ([`BendingPoint::secant_stiffness`]) takes both over whole pitches
-    /// of the longest-pitch layer. On a strand of several layers the core's curvature
-    /// oscillates with the pitch of the layer on it (about 2.5 % on the 1+6+12 cell), so that
-    /// figure depends on where the window falls; a window of a whole number of that layer's
-    /// pitches ([`BendingTest::centred_window`]) removes it (the Strands of several layers
-    /// page of the manual).
+    /// On a strand of several layers the core's curvature oscillates with the pitch of the
+    /// layer on it (about 2.5 % on the 1+6+12 cell), so a figure over whole pitches of the
+    /// longest-pitch layer alone depends on where the window falls; a window of a whole number
+    /// of that layer's pitches ([`BendingTest::centred_window`]) removes most of it, and the
+    /// test's own figure ([`BendingPoint::secant_stiffness`]) takes whole pitches of every
+    /// layer ([`BendingTest::window`]; the Strands of several layers page of the manual).
     pub fn window_stiffness(model: &FineModel, state: &ModelState, (lo, hi): (f64, f64)) -> f64 {
         let m = Self::moment_profile(model, state);
         let mut integral = 0.0;
@@ -605,7 +648,7 @@ impl BendingTest {
         state: &ModelState,
         kappa: f64,
         iterations: usize,
-        (lo, hi): (f64, f64),
+        (window, one_layer): (&PitchWindow, Option<(f64, f64)>),
     ) -> BendingPoint {
         let loads = {
             let mut loads = model.load_buffers();
@@ -616,30 +659,14 @@ impl BendingTest {
         // x of the segment they act on.
         let (ext, tension) = Self::external_loads(model, state);
         let profile = Self::moment_profile_of(model, state, &ext);
-        let mut sum = 0.0;
-        let mut cuts = 0;
-        for &(x, m) in &profile {
-            if x >= lo - 1e-12 && x <= hi + 1e-12 {
-                sum += m;
-                cuts += 1;
-            }
-        }
         let core = &model.wires[0].chain;
         let l = core.segments[0].length;
         let line = core.centreline(&state.wires[0].poses);
-        // Curvature over [lo, hi]: tangent angle change of the core segments over the arc
-        // length between their centres.
         let poses = &state.wires[0].poses;
-        let first = ((lo / l).round() as usize).min(poses.len() - 1);
-        let last = ((hi / l).round() as usize).saturating_sub(1).max(first + 1);
-        let angle = |p: &Pose| {
-            let t = p.tangent();
-            t.y.atan2(t.x)
+        let (moment, curvature) = match one_layer {
+            Some(box_) => one_layer_measure(&profile, poses, l, box_),
+            None => window.measure(&profile, poses, l),
         };
-        let arc: f64 = (first..last)
-            .map(|k| (poses[k + 1].position - poses[k].position).norm())
-            .sum();
-        let curvature = (angle(&poses[last]) - angle(&poses[first])) / arc;
         let count = |st: ContactState| {
             loads
                 .iter()
@@ -650,7 +677,7 @@ impl BendingTest {
         BendingPoint {
             imposed_curvature: kappa,
             curvature,
-            moment: sum / cuts.max(1) as f64,
+            moment,
             clamp_moment: moment_at(&ext, 1e-12, &line[0]),
             tension,
             iterations,
@@ -659,6 +686,36 @@ impl BendingTest {
             open: count(ContactState::Open),
         }
     }
+}
+
+/// The one-layer test's moment and curvature over the window from rest x `lo` to `hi` (m):
+/// the mean moment over the cuts in the window; the tangent angle change of the core's
+/// segments over the arc length between their centres.
+fn one_layer_measure(
+    profile: &[(f64, f64)],
+    poses: &[Pose],
+    l: f64,
+    (lo, hi): (f64, f64),
+) -> (f64, f64) {
+    let mut sum = 0.0;
+    let mut cuts = 0;
+    for &(x, m) in profile {
+        if x >= lo - 1e-12 && x <= hi + 1e-12 {
+            sum += m;
+            cuts += 1;
+        }
+    }
+    let first = ((lo / l).round() as usize).min(poses.len() - 1);
+    let last = ((hi / l).round() as usize).saturating_sub(1).max(first + 1);
+    let angle = |p: &Pose| {
+        let t = p.tangent();
+        t.y.atan2(t.x)
+    };
+    let arc: f64 = (first..last)
+        .map(|k| (poses[k + 1].position - poses[k].position).norm())
+        .sum();
+    let curvature = (angle(&poses[last]) - angle(&poses[first])) / arc;
+    (sum / cuts.max(1) as f64, curvature)
 }
 
 /// The bending moment about z at a cut at rest x `x_cut` through the point `c` (N m): minus

@@ -14,7 +14,8 @@
 //! * [`contact`]: wire-to-core contact (penalty and Cundall-Strack friction with history),
 //!   added to a model by [`FineModel::add_contacts`]; [`interlayer`]: wire-to-wire contact
 //!   (crossings and lines with the layer beneath, neighbours in a layer) with the same law.
-//! * [`bending`]: the virtual bending test (moment against curvature under tension).
+//! * [`bending`]: the virtual bending test (moment against curvature under tension);
+//!   [`pitch_window`]: the window of whole pitches of every layer it measures over.
 //!
 //! Units are SI throughout (m, kg, s, N, rad).
 //!
@@ -45,6 +46,7 @@ pub mod load_continuation;
 pub mod model;
 pub mod motion;
 pub mod penalty;
+pub mod pitch_window;
 pub mod pseudo_transient;
 pub mod segment;
 pub mod settle;
@@ -67,6 +69,7 @@ pub use model::{
     Anchor, Discretisation, End, Energies, FineModel, ModelState, NEIGHBOUR_GAP, SpringScale,
     Support, Tie, Wire, WireLoads, WireState,
 };
+pub use pitch_window::PitchWindow;
 pub use segment::{Pose, Segment};
 pub use settle::{
     SettleError, SettleOptions, SettleReport, SettledOptions, SettledReport, damping_and_ramp,

@@ -368,7 +368,7 @@ fn link_tangent_matches_the_change_of_the_loads() {
 /// M / kappa is the sum of the thin-rod K_min of the core and of the wires of both layers
 /// (Costello's wire stiffness, `Strand::min_bending_stiffness`) within 1 %, converged in the
 /// segment length. Measured (`probe_frictionless_1x19` with `RELIEF=0`, SPP = 8, 12, 16, 24,
-/// 32): 1.00107, 1.00072, 1.00057, 1.00043, 1.00037 K_min; the test runs 12 and 24 and asks them within
+/// 32): 1.00107, 1.00069, 1.00054, 1.00040, 1.00034 K_min; the test runs 12 and 24 and asks them within
 /// 2e-3 of each other (a fifth of the tolerance). The penalty is the penetration rule at the
 /// test's tension: with the strain-relief penalty, stiff at any tension, Newton does not
 /// converge on the tension step at 12 segments per pitch and 0.1 N (scaled residual 1.3e-2;
