@@ -105,17 +105,27 @@ pub enum StickStiffness {
     Bonded,
     /// The plane-section K_stick_i of eq. (22a), as the paper (all-stick stiffness K_max).
     PlaneSection,
+    /// Each layer's share of the stick stiffness of the strand as one body
+    /// ([`strand_layer_stick_stiffness`], rigid bonds), over its plane-section value: the
+    /// layers' stick stiffnesses sum to the one-body `bonded - free`. For one layer, or a
+    /// layer of fewer than 3 wires (which the one-body model does not carry), `bonded`.
+    OneBody,
 }
 
 impl StickStiffness {
     /// Every form, in the order of the documentation.
-    pub const ALL: [StickStiffness; 2] = [StickStiffness::Bonded, StickStiffness::PlaneSection];
+    pub const ALL: [StickStiffness; 3] = [
+        StickStiffness::Bonded,
+        StickStiffness::PlaneSection,
+        StickStiffness::OneBody,
+    ];
 
     /// Name as used in scene files (`section.stick_stiffness`).
     pub fn name(self) -> &'static str {
         match self {
             StickStiffness::Bonded => "bonded",
             StickStiffness::PlaneSection => "plane_section",
+            StickStiffness::OneBody => "one_body",
         }
     }
 
@@ -131,10 +141,21 @@ impl StickStiffness {
     /// layer the strand does not have). With one or two wires
     /// the model cannot carry the core's tilt, which then varies along the strand, so their
     /// factor takes the core rigid in shear and keeps only the wires' own compliance (an
-    /// upper bound on the factor).
+    /// upper bound on the factor). For `one_body` on strands of two or more layers of at
+    /// least 3 wires each, the layer's share of the one-body stick stiffness over its
+    /// plane-section value (`one_body_factors`); otherwise as `bonded`.
     pub fn factor(self, strand: &Strand, layer: usize) -> f64 {
         match self {
             StickStiffness::PlaneSection => 1.0,
+            StickStiffness::OneBody
+                if strand.layers().len() > 1 && strand.layers().get(layer).is_some() =>
+            {
+                match one_body_factors(strand) {
+                    Some(f) => f[layer],
+                    None => StickStiffness::Bonded.factor(strand, layer),
+                }
+            }
+            StickStiffness::OneBody => StickStiffness::Bonded.factor(strand, layer),
             StickStiffness::Bonded => {
                 let Some(h) = strand.layers().get(layer) else {
                     return 1.0;
@@ -147,6 +168,27 @@ impl StickStiffness {
                     .map_or(1.0, |b| b.stick_factor())
             }
         }
+    }
+}
+
+/// The `one_body` stick factors of every layer of `strand` (-): each layer's share
+/// ([`strand_layer_stick_stiffness`], rigid bonds) over its plane-section stick stiffness.
+/// A share can be negative (a stiff layer laid on a compliant one drags the wires beneath
+/// against their plane-section strain), which no slider spring can carry; then every layer
+/// takes the same factor, the one-body stick stiffness over the plane-section one, which keeps
+/// the all-stick total. `None` where the one-body model is `None`.
+fn one_body_factors(strand: &Strand) -> Option<Vec<f64>> {
+    let shares = strand_layer_stick_stiffness(strand, &BondedOptions::default())?;
+    let plane: Vec<f64> = strand
+        .layers()
+        .iter()
+        .map(|l| strand.layer_plane_section_stick(l))
+        .collect();
+    if shares.iter().all(|&k| k > 0.0) {
+        Some(shares.iter().zip(&plane).map(|(k, p)| k / p).collect())
+    } else {
+        let even = shares.iter().sum::<f64>() / plane.iter().sum::<f64>();
+        Some(vec![even; plane.len()])
     }
 }
 
@@ -508,8 +550,10 @@ pub fn strand_bonded_stiffness(
         directions: layers.iter().map(|l| l.direction().sign()).collect(),
         radii: layers.iter().map(|l| l.spec.wire.radius()).collect(),
     };
-    let free = stack.stiffness(Some(0.0), options.normal_stiffness);
-    let bonded = stack.stiffness(options.tangential_stiffness, options.normal_stiffness);
+    let free = stack.stiffness(Some(0.0), options.normal_stiffness).0;
+    let bonded = stack
+        .stiffness(options.tangential_stiffness, options.normal_stiffness)
+        .0;
     Some(BondedStiffness {
         bonded,
         free,
@@ -518,6 +562,41 @@ pub fn strand_bonded_stiffness(
             .map(|l| strand.layer_plane_section_stick(l))
             .sum(),
     })
+}
+
+/// Each layer's stick stiffness in the strand as one body (N m^2, one per layer, inner
+/// first): the bending moment per unit curvature that the layer's wires carry with every
+/// interface bonded, less the one they carry with every wire free to slide
+/// ([`strand_bonded_stiffness`] under `options`; `None` where that is `None`).
+///
+/// The moment of the strand is `dU/dkappa`; with the perturbation at its minimum, only the
+/// explicit dependence counts (the envelope theorem), and that lies in the wires' strains
+/// alone (the plane section's field: axial, shear, twist and bending of each wire; the bond
+/// and the core's tilt carry none). So the moment splits exactly into the layers' shares
+/// `sum_i k_i gamma_i gamma0_i` (`gamma_i` a wire strain, `gamma0_i` its plane-section part,
+/// both per unit curvature, `k_i` its stiffness) plus the core's E I, and the shares of the
+/// bonded strand less those of the free one sum to its stick stiffness `bonded - free`. A
+/// layer's share is mostly its wires' axial forces times their arm (for rigid-section wires,
+/// bonded on their axes, exactly the plane-section `(m/2) eta E_w A_w R_w^2`); the change of
+/// the wires' own bending and twisting moments between bond and free sliding is the rest. For
+/// one layer it is `bonded - free` of [`bonded_stiffness`].
+pub fn strand_layer_stick_stiffness(strand: &Strand, options: &BondedOptions) -> Option<Vec<f64>> {
+    let layers = strand.layers();
+    if layers.is_empty() || layers.iter().any(|l| l.wires() < 3) {
+        return None;
+    }
+    let stack = Stack {
+        rods: (0..layers.len())
+            .map(|j| Rods::new(strand, j, options))
+            .collect(),
+        directions: layers.iter().map(|l| l.direction().sign()).collect(),
+        radii: layers.iter().map(|l| l.spec.wire.radius()).collect(),
+    };
+    let free = stack.stiffness(Some(0.0), options.normal_stiffness).1;
+    let bonded = stack
+        .stiffness(options.tangential_stiffness, options.normal_stiffness)
+        .1;
+    Some(bonded.iter().zip(&free).map(|(b, f)| b - f).collect())
 }
 
 /// The rod models of every layer of a strand, coupled at their interfaces.
@@ -580,8 +659,9 @@ impl Stack {
     }
 
     /// Bending stiffness (N m^2) with the bonds' tangential and normal stiffness per unit
-    /// length of the outer wire of each interface (`None`: rigid).
-    fn stiffness(&self, tangential: Option<f64>, normal: Option<f64>) -> f64 {
+    /// length of the outer wire of each interface (`None`: rigid), and each layer's share of
+    /// it ([`strand_layer_stick_stiffness`]; the shares and the core's E I sum to it).
+    fn stiffness(&self, tangential: Option<f64>, normal: Option<f64>) -> (f64, Vec<f64>) {
         let n = self.unknowns();
         let mut a = vec![vec![0.0; n]; n];
         let mut b = vec![0.0; n];
@@ -671,7 +751,31 @@ impl Stack {
         }
         let x = solve(m);
         let u = c0 + 0.5 * b.iter().zip(&x).map(|(b, q)| b * q).sum::<f64>();
-        2.0 * u + rod.core_bending
+        let shares = self
+            .rods
+            .iter()
+            .enumerate()
+            .map(|(j, rod)| {
+                let weight = rod.wires / rod.alpha.cos() / STATIONS as f64;
+                (0..STATIONS)
+                    .map(|i| {
+                        let theta = 2.0 * PI * (i as f64 + 0.5) / STATIONS as f64;
+                        let (strains, _) = rod.fields(theta);
+                        strains
+                            .iter()
+                            .zip(&rod.wire)
+                            .map(|(f, &k)| {
+                                let q = self.place(j, f);
+                                let strain =
+                                    f.c + q.iter().zip(&x).map(|(a, b)| a * b).sum::<f64>();
+                                weight * k * strain * f.c
+                            })
+                            .sum::<f64>()
+                    })
+                    .sum()
+            })
+            .collect();
+        (2.0 * u + rod.core_bending, shares)
     }
 }
 

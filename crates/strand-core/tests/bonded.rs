@@ -5,7 +5,7 @@
 //! `bonded` stick stiffness takes the model's stick factor on each wire's spring.
 
 use proptest::prelude::*;
-use strand_core::bonded::strand_bonded_stiffness;
+use strand_core::bonded::{strand_bonded_stiffness, strand_layer_stick_stiffness};
 use strand_core::{
     BondedOptions, LawKind, LayDirection, LayerSpec, Material, SectionLaw, SectionOptions,
     StickStiffness, Strand, StrandSpec, WireSpec, bonded_stiffness,
@@ -221,7 +221,7 @@ proptest! {
             let secant = mean_moment(&law, kappa) / kappa;
             prop_assert!((secant - want).abs() <= 1e-9 * want, "{} vs {}", secant, want);
         }
-        let [bonded, plane_law] = StickStiffness::ALL.map(|stick| {
+        let [bonded, plane_law] = [StickStiffness::Bonded, StickStiffness::PlaneSection].map(|stick| {
             let options = SectionOptions { stick_stiffness: stick, ..Default::default() };
             SectionLaw::with_options(&s, LawKind::Continuous, &options)
         });
@@ -390,5 +390,91 @@ fn straight_layers_bond_fully_as_one_body() {
         let (d1, d2) = (deficit(0.2), deficit(0.1));
         assert!(d2 > 0.0 && d2 < 1e-3, "{dirs:?}: {d2}");
         assert!((d2 / d1 - 0.25).abs() < 0.01, "{dirs:?}: {d1} {d2}");
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// The one-body stick stiffness in the section law (`section.stick_stiffness =
+    /// one_body`): the layers' shares, each its wires' moment bonded less free, sum to the
+    /// one-body stick stiffness `bonded - free` computed from the energy (the shares come
+    /// from the moment dU/dkappa, so this is Clapeyron's theorem on the solved field, not an
+    /// identity of the code); the law's all-stick stiffness is K_min plus that, and with
+    /// Costello's K_min (the default, and the free strand's value) it is the one-body bonded
+    /// stiffness itself. Every factor is positive.
+    #[test]
+    fn one_body_layers_sum_to_the_strand_as_one_body(s in random_two_layers()) {
+        let o = BondedOptions::default();
+        let b = strand_bonded_stiffness(&s, &o).unwrap();
+        let shares = strand_layer_stick_stiffness(&s, &o).unwrap();
+        let stick = b.bonded - b.free;
+        let sum: f64 = shares.iter().sum();
+        prop_assert!((sum / stick - 1.0).abs() < 1e-9, "shares {:?} sum {} vs {}", shares, sum, stick);
+        // Each layer's factor is its share over its plane-section value; where a share is
+        // not positive (no spring can carry it), the even factor on every layer.
+        let plane: Vec<f64> = s.layers().iter().map(|l| s.layer_plane_section_stick(l)).collect();
+        let even = shares.iter().any(|&k| k <= 0.0);
+        for (j, p) in plane.iter().enumerate() {
+            let f = StickStiffness::OneBody.factor(&s, j);
+            prop_assert!(f > 0.0, "layer {}: factor {}", j, f);
+            let want = if even { stick / plane.iter().sum::<f64>() } else { shares[j] / p };
+            prop_assert!((f / want - 1.0).abs() < 1e-12, "layer {}: {} vs {}", j, f, want);
+        }
+        let options = SectionOptions { stick_stiffness: StickStiffness::OneBody, ..Default::default() };
+        let law = SectionLaw::with_options(&s, LawKind::Continuous, &options);
+        let k_stick = law.stick_bending_stiffness() - law.base_bending_stiffness();
+        prop_assert!((k_stick / stick - 1.0).abs() < 1e-9, "{} vs {}", k_stick, stick);
+        prop_assert!((law.stick_bending_stiffness() / b.bonded - 1.0).abs() < 1e-9,
+            "{} vs {}", law.stick_bending_stiffness(), b.bonded);
+    }
+
+    /// One layer: `one_body` is `bonded`, bit for bit (the law takes the per-interface factor
+    /// there), and the one-body share is the one-interface model's `bonded - free` to
+    /// round-off.
+    #[test]
+    fn one_body_on_one_layer_is_bonded(s in random_strand()) {
+        prop_assert_eq!(StickStiffness::OneBody.factor(&s, 0), StickStiffness::Bonded.factor(&s, 0));
+        let o = BondedOptions::default();
+        let a = bonded_stiffness(&s, &o).unwrap();
+        let share = strand_layer_stick_stiffness(&s, &o).unwrap()[0];
+        prop_assert!((share / (a.bonded - a.free) - 1.0).abs() < 1e-9, "{} vs {}", share, a.bonded - a.free);
+    }
+}
+
+/// Three layers (1+6+12+18, alternate lays): the shares still sum to the one-body stick
+/// stiffness, and nearly straight layers each bond fully (every factor tends to 1 as the
+/// lay angles tend to zero, as the one-body stiffness does).
+#[test]
+fn one_body_shares_on_three_layers() {
+    let strand = |alpha: f64| {
+        let mut spec = two_layers(
+            (3.3e-3, 2e11, 6, 3e-3, 2e11, alpha),
+            (12, 3e-3, 2e11, alpha),
+            (true, false),
+        )
+        .unwrap()
+        .spec()
+        .clone();
+        let mut outer = spec.layers[1];
+        outer.wires = 18;
+        outer.direction = LayDirection::Right;
+        spec.layers.push(outer);
+        Strand::new(spec).expect("a 1+6+12+18 strand")
+    };
+    let s = strand(12.0);
+    let o = BondedOptions::default();
+    let b = strand_bonded_stiffness(&s, &o).unwrap();
+    let shares = strand_layer_stick_stiffness(&s, &o).unwrap();
+    assert_eq!(shares.len(), 3);
+    let sum: f64 = shares.iter().sum();
+    assert!(
+        (sum / (b.bonded - b.free) - 1.0).abs() < 1e-9,
+        "{shares:?} {b:?}"
+    );
+    let straight = strand(0.1);
+    for j in 0..3 {
+        let f = StickStiffness::OneBody.factor(&straight, j);
+        assert!((1.0 - f).abs() < 1e-3, "layer {j}: {f}");
     }
 }

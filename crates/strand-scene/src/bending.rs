@@ -138,6 +138,21 @@ impl LawPath {
     }
 }
 
+/// The section law of `scene` followed along the curvature path `curvatures` (1/m, from
+/// straight) at the strain of tension `tension` (N), as the bending test's `law_moment`
+/// column takes it: the moment (N m) at each point, averaged over the stations of one pitch.
+/// Evaluates other laws or options at a fine test's measured curvatures.
+pub fn law_path_moments(scene: &Scene, tension: f64, curvatures: &[f64]) -> Vec<f64> {
+    let strand = &scene.strand;
+    let law = SectionLaw::with_options(strand, scene.law, &scene.section);
+    let eps = tension / strand.axial_stiffness();
+    let mut path = LawPath::new(&law, strand);
+    curvatures
+        .iter()
+        .map(|&k| path.moment(&law, eps, k))
+        .collect()
+}
+
 /// Runs the virtual bending test on `scene`'s strand and writes `DIR/bending.csv` and
 /// `DIR/summary.json`; `progress` receives each measured point. The contacts' normal penalty
 /// follows the number of layers ([`NormalPenalty::ByLayers`]).

@@ -16,7 +16,9 @@ mod scene;
 pub mod section_batch;
 mod selection;
 
-pub use bending::{BendingOptions, BendingSummary, run_bending, run_bending_with_penalty};
+pub use bending::{
+    BendingOptions, BendingSummary, law_path_moments, run_bending, run_bending_with_penalty,
+};
 pub use law_bending::{LawBendingOptions, LawBendingSummary, loading_moments, run_law_bending};
 pub use run::{
     BeamModelKind, Failure, RunError, RunOptions, RunSummary, build_beam, dynamic_options,

@@ -101,3 +101,32 @@ fn loading_moments_first_loading() {
     let k_min = law.base_bending_stiffness();
     assert!((slope / k_min - 1.0).abs() < 1e-9, "{slope} vs {k_min}");
 }
+
+/// `section.stick_stiffness = one_body` along a curvature path (`law_path_moments`, what the
+/// bending test's `law_moment` column follows): turned back by a little after full slip,
+/// every wire sticks again, so the law's unloading tangent is its all-stick stiffness, and
+/// with `one_body` that is the rod model of the strand as one body
+/// (`strand_bonded_stiffness`: its free part is Costello's K_min, the law's default), not the
+/// per-interface `bonded` value. The tangent is a difference of moments near 1 N m over a
+/// step of 1e-6 1/m: round-off 1e-16 / 1e-4, far below the 1e-6 asked.
+#[test]
+fn one_body_unloads_with_the_strand_as_one_body() {
+    let mut scene = Scene::parse(SCENE).unwrap();
+    let one_body = strand_core::bonded::strand_bonded_stiffness(
+        &scene.strand,
+        &strand_core::BondedOptions::default(),
+    )
+    .unwrap()
+    .bonded;
+    let (k1, dk) = (0.05, 1e-6);
+    let tangent = |scene: &Scene| {
+        let m = strand_scene::law_path_moments(scene, 1e4, &[k1, k1 - dk]);
+        (m[0] - m[1]) / dk
+    };
+    scene.section.stick_stiffness = strand_core::StickStiffness::OneBody;
+    let t = tangent(&scene);
+    assert!((t / one_body - 1.0).abs() < 1e-6, "{t} vs {one_body}");
+    scene.section.stick_stiffness = strand_core::StickStiffness::Bonded;
+    let t = tangent(&scene);
+    assert!(t / one_body > 2.0, "bonded: {t} vs one body {one_body}");
+}
