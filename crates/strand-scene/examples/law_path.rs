@@ -6,7 +6,9 @@
 //! the test ran in its `section` options only (they do not enter the fine model), so one fine
 //! run serves every variant of the law.
 //!
-//! `cargo run --release -p strand-scene --example law_path -- SCENE T DIR/bending.csv`
+//! `cargo run --release -p strand-scene --example law_path -- SCENE T DIR/bending.csv [PITCHES]`
+//! (`PITCHES`: the test's `--pitches`, default 3; on several layers the law is averaged over
+//! the test's window of whole pitches of every layer).
 
 use strand_scene::Scene;
 
@@ -25,8 +27,9 @@ fn main() {
             (v[ck], v[cm])
         })
         .collect();
+    let pitches: usize = args.get(4).map_or(3, |p| p.parse().expect("pitches"));
     let kappas: Vec<f64> = rows.iter().map(|r| r.0).collect();
-    let law = strand_scene::law_path_moments(&scene, t, &kappas);
+    let law = strand_scene::law_path_moments(&scene, t, pitches, &kappas);
     println!(
         "{} (section.stick_stiffness {}, slip_pressure {:?}), T = {t} N",
         scene.name, scene.section.stick_stiffness, scene.section.slip_pressure

@@ -140,13 +140,23 @@ impl LawPath {
 
 /// The section law of `scene` followed along the curvature path `curvatures` (1/m, from
 /// straight) at the strain of tension `tension` (N), as the bending test's `law_moment`
-/// column takes it: the moment (N m) at each point, averaged over the stations of one pitch.
-/// Evaluates other laws or options at a fine test's measured curvatures.
-pub fn law_path_moments(scene: &Scene, tension: f64, curvatures: &[f64]) -> Vec<f64> {
+/// column takes it: the moment (N m) at each point, averaged over the stations of one pitch
+/// (one layer) or of the window of a test `pitches` longest pitches long (several layers,
+/// [`BendingTest::window`]). Evaluates other laws or options at a fine test's measured
+/// curvatures.
+pub fn law_path_moments(
+    scene: &Scene,
+    tension: f64,
+    pitches: usize,
+    curvatures: &[f64],
+) -> Vec<f64> {
     let strand = &scene.strand;
     let law = SectionLaw::with_options(strand, scene.law, &scene.section);
     let eps = tension / strand.axial_stiffness();
-    let mut path = LawPath::new(&law, strand);
+    let layer_pitches: Vec<f64> = strand.layers().iter().map(|l| l.pitch).collect();
+    let longest = layer_pitches.iter().copied().fold(0.0, f64::max);
+    let window = PitchWindow::for_layers(&layer_pitches, longest * pitches as f64);
+    let mut path = LawPath::new(&law, strand, &window);
     curvatures
         .iter()
         .map(|&k| path.moment(&law, eps, k))

@@ -120,7 +120,7 @@ fn one_body_unloads_with_the_strand_as_one_body() {
     .bonded;
     let (k1, dk) = (0.05, 1e-6);
     let tangent = |scene: &Scene| {
-        let m = strand_scene::law_path_moments(scene, 1e4, &[k1, k1 - dk]);
+        let m = strand_scene::law_path_moments(scene, 1e4, 3, &[k1, k1 - dk]);
         (m[0] - m[1]) / dk
     };
     scene.section.stick_stiffness = strand_core::StickStiffness::OneBody;
