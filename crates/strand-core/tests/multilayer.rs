@@ -239,6 +239,36 @@ proptest! {
         }
     }
 
+    /// The same at friction coefficients of 3 to 100, where theta ||A|| passes the plain
+    /// series' reach and the exponential is scaled and squared (the series summed as before
+    /// gave -2e81 for a law moment at mu = 1000). RK4 takes 40 steps per unit of mu theta
+    /// (mu theta sin(alpha) h <= 0.025, stable and accurate on both sides) and twice that; the
+    /// tolerance as above, with the round-off of the longer integration.
+    #[test]
+    fn friction_limit_at_large_friction_solves_the_pressure_system(
+        s in multilayer(), pressure in pressures(), theta in 0.1..FRAC_PI_2, mu in 3.0..100.0f64,
+    ) {
+        let s = Strand::new(StrandSpec { friction: mu, ..s.spec().clone() }).unwrap();
+        let law = law(&s, LawKind::Continuous, pressure);
+        let eps = 1e-3;
+        let steps = (40.0 * mu * theta).ceil() as usize;
+        for (j, h) in s.layers().iter().enumerate() {
+            let w = &h.spec.wire;
+            let a = h.lay_angle();
+            let per_gain = a.cos() * w.material.youngs_modulus * w.area() * a.cos().powi(2) * eps;
+            let cap = law.friction_limit(j, eps, theta);
+            for (side, sign) in [(0, 1.0), (1, -1.0)] {
+                let got = cap[side] / per_gain;
+                let coarse = sign * rk4_gain(&s, pressure, j, theta, sign, steps);
+                let fine = sign * rk4_gain(&s, pressure, j, theta, sign, 2 * steps);
+                let rk4_round = 2.0 * steps as f64 * f64::EPSILON * (1.0 + fine.abs());
+                let tol = 10.0 * (fine - coarse).abs() + 1e-12 * fine.abs() + rk4_round;
+                prop_assert!(got.is_finite() && (got - fine).abs() <= tol,
+                    "layer {j} side {side}: {got} against RK4 {fine} (tolerance {tol})");
+            }
+        }
+    }
+
     /// Planar tangents dM/dkappa and dM/deps against central differences, away from the
     /// switches (the moment is linear in kappa between them, and in eps through the friction
     /// limits, so a central difference is exact but for round-off: 1e-16 |M| / h with

@@ -37,8 +37,11 @@
 //! cancellation at small theta and no division by lambda_k - lambda_j: for the capstan angles
 //! of the law (theta <= pi) and friction coefficients up to 1, theta ||A|| is a few units and
 //! the series reaches round-off in fewer than 40 terms; the loop stops when a term no longer
-//! changes the sum. The property tests compare it with a Runge-Kutta integration of the system
-//! built from the formulas above.
+//! changes the sum. Beyond theta ||A|| = 8 (friction coefficients of several units, e.g. a
+//! scene that sets a large mu to keep its wires stuck) the shortened side's alternating series
+//! would lose every digit, and the exponential is scaled and squared instead. The property
+//! tests compare both with a Runge-Kutta integration of the system built from the formulas
+//! above.
 //!
 //! Both faces (`two_faces`): the layers outside press a wire of layer j down on its outer face
 //! as well, with the same line load that its inner face passes on to the layer beneath. Where
@@ -59,8 +62,14 @@ use crate::geometry::Strand;
 /// The largest number of layers the accumulated-pressure limits evaluate without allocating.
 pub const MAX_LAYERS: usize = 16;
 
-/// Upper bound on the series' terms; reached only for theta ||A|| beyond 100.
+/// Upper bound on the series' terms; not reached (theta ||A|| <= [`SERIES_REACH`]).
 const MAX_TERMS: usize = 400;
+
+/// The largest theta ||A|| summed as the plain series (-): on the shortened side the series
+/// alternates, and its largest term, at most exp(theta ||A||) of the sum's scale, costs that
+/// many units of round-off, 3e3 u = 7e-13 at 8. Friction coefficients up to 1 stay below it
+/// (theta <= pi); beyond it [`PressureSystem::side`] scales and squares.
+const SERIES_REACH: f64 = 8.0;
 
 /// Which contact pressure sets a layer's friction limit (`section.slip_pressure`; module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
@@ -198,6 +207,15 @@ impl PressureSystem {
         let n = self.layers;
         let m = n - j;
         debug_assert!(n <= MAX_LAYERS);
+        // theta ||A|| (rows j.., maximum row sum): beyond SERIES_REACH the shortened side's
+        // alternating series loses every digit (its largest term grows as
+        // exp(theta ||A||) while the sum stays below one), so it is scaled and squared.
+        let norm = (j..n)
+            .map(|r| (r..n).map(|c| self.matrix[r * n + c].abs()).sum::<f64>())
+            .fold(0.0, f64::max);
+        if theta * norm > SERIES_REACH {
+            return self.side_squared(j, theta * norm, theta, sign);
+        }
         // Rows j.. only: the system is upper triangular.
         let mut term = [0.0; MAX_LAYERS];
         let mut sum = [0.0; MAX_LAYERS];
@@ -223,6 +241,65 @@ impl PressureSystem {
         let slope: f64 = (0..m)
             .map(|c| a(0, c) * (self.tension[j + c] + sum[c]))
             .sum();
+        (sum[0] / self.tension[j], slope / self.tension[j])
+    }
+
+    /// [`Self::side`] by scaling and squaring, for `reach` = theta ||A|| beyond
+    /// [`SERIES_REACH`]: B = exp(theta A / 2^s) - I by its series, with ||theta A / 2^s|| <= 1
+    /// (no cancellation: the largest term is the first), then s times (I + B)^2 - I = 2 B +
+    /// B^2, which keeps the difference from I without forming I + B. The matrices are upper
+    /// triangular; the products run over r <= k <= c only, so an infinite entry of the
+    /// stretched side (exp overflows past theta ||A|| of about 700: a limit no wire reaches,
+    /// the wires stick) never meets a structural zero.
+    fn side_squared(&self, j: usize, reach: f64, theta: f64, sign: f64) -> (f64, f64) {
+        let n = self.layers;
+        let m = n - j;
+        let squarings = reach.log2().ceil().max(0.0) as i32;
+        let h = theta * 0.5f64.powi(squarings);
+        let a = |r: usize, c: usize| sign * self.matrix[(j + r) * n + j + c];
+        let mut b = [[0.0; MAX_LAYERS]; MAX_LAYERS];
+        let mut term = [[0.0; MAX_LAYERS]; MAX_LAYERS];
+        for r in 0..m {
+            for c in r..m {
+                term[r][c] = h * a(r, c);
+                b[r][c] = term[r][c];
+            }
+        }
+        for order in 2..MAX_TERMS {
+            let mut next = [[0.0; MAX_LAYERS]; MAX_LAYERS];
+            for r in 0..m {
+                for c in r..m {
+                    let s: f64 = (r..=c).map(|k| term[r][k] * a(k, c)).sum();
+                    next[r][c] = s * h / order as f64;
+                }
+            }
+            let mut moved = false;
+            for r in 0..m {
+                for c in r..m {
+                    b[r][c] += next[r][c];
+                    moved |= next[r][c].abs() > 1e-17 * b[r][c].abs();
+                }
+            }
+            term = next;
+            if !moved {
+                break;
+            }
+        }
+        for _ in 0..squarings {
+            let mut sq = [[0.0; MAX_LAYERS]; MAX_LAYERS];
+            for r in 0..m {
+                for c in r..m {
+                    let p: f64 = (r..=c).map(|k| b[r][k] * b[k][c]).sum();
+                    sq[r][c] = 2.0 * b[r][c] + p;
+                }
+            }
+            b = sq;
+        }
+        let f = &self.tension[j..n];
+        let sum: Vec<f64> = (0..m)
+            .map(|r| (r..m).map(|c| b[r][c] * f[c]).sum())
+            .collect();
+        let slope: f64 = (0..m).map(|c| a(0, c) * (f[c] + sum[c])).sum();
         (sum[0] / self.tension[j], slope / self.tension[j])
     }
 
