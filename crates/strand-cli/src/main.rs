@@ -570,9 +570,13 @@ fn print_summary(scene: &Scene, s: &StrandSummary) {
         (
             "wire stick stiffness",
             format!(
-                "{} (section.stick_stiffness), factor {} on eq. (22a)",
+                "{} (section.stick_stiffness), factor {}",
                 s.stick_stiffness,
-                s.stick_factor.map_or("-".into(), |f| format!("{f:.4}"))
+                match (s.stick_factor, s.layers.len()) {
+                    (None, _) => "- on eq. (22a)".into(),
+                    (Some(f), 1) => format!("{f:.4} on eq. (22a)"),
+                    _ => "on eq. (22a) per layer in the table below".into(),
+                }
             ),
         ),
         (

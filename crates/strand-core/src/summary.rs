@@ -40,8 +40,9 @@ pub struct StrandSummary {
     pub k_min_paper: f64,
     /// Which stick stiffness the helical wires have (`section.stick_stiffness`).
     pub stick_stiffness: StickStiffness,
-    /// Factor on the plane-section stick stiffness that the laws use (-): the rod model's
-    /// for `bonded`, 1 for `plane_section`; `None` for a plain wire.
+    /// Factor on the plane-section stick stiffness of the first layer's wires (-): the rod
+    /// model's for `bonded`, 1 for `plane_section`; `None` for a plain wire. Each layer's is
+    /// [`LayerSummary::stick_factor`].
     pub stick_factor: Option<f64>,
     /// Which friction limit the slipping wires have (`section.slip_limit`).
     pub slip_limit: SlipLimit,
