@@ -14,7 +14,23 @@ use common::csv_columns;
 use serde_json::json;
 use strand_scene::{RunOptions, Scene, run_scene};
 
-fn run(scene: &serde_json::Value, tag: &str) -> PathBuf {
+/// A run's output directory, removed when the test is done with it.
+struct Out(PathBuf);
+
+impl std::ops::Deref for Out {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Out {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn run(scene: &serde_json::Value, tag: &str) -> Out {
     let scene = Scene::parse(&scene.to_string()).expect("valid scene");
     let out = std::env::temp_dir().join(format!("strand-probes-{tag}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
@@ -31,7 +47,7 @@ fn run(scene: &serde_json::Value, tag: &str) -> PathBuf {
             s.warnings
         );
     }
-    out
+    Out(out)
 }
 
 /// A pendulum of the paper's strand, pinned at the start, falling under gravity from along
