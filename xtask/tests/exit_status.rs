@@ -1,18 +1,21 @@
 //! `cargo xtask validate` exits non-zero and names the failing checks when the model is
 //! broken, and exits zero on the scene as it is.
 
+#[path = "common/temp_path.rs"]
+mod temp_path;
+
 use std::process::Command;
 
+use temp_path::TempPath;
+
 fn validate(out: &str, extra: &[&str]) -> std::process::Output {
-    let dir = std::env::temp_dir().join(format!("xtask-exit-{out}-{}", std::process::id()));
-    let out = Command::new(env!("CARGO_BIN_EXE_xtask"))
+    let dir = TempPath::new(&format!("xtask-exit-{out}"));
+    Command::new(env!("CARGO_BIN_EXE_xtask"))
         .args(["validate", "--quick", "--scene", "paper-sec3-g8", "--out"])
-        .arg(&dir)
+        .arg(&*dir)
         .args(extra)
         .output()
-        .expect("xtask runs");
-    std::fs::remove_dir_all(&dir).ok();
-    out
+        .expect("xtask runs")
 }
 
 #[test]

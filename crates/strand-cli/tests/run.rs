@@ -1,12 +1,16 @@
 //! `strand run` writes the SPEC 6 files: a static scene (the paper's section-3 strand under
 //! g = 12) and a dynamic one (the Fig. 8 pinned pendulum).
 
-use std::path::{Path, PathBuf};
+#[path = "common/temp_path.rs"]
+mod temp_path;
+
+use std::path::Path;
 use std::process::Command;
 
-fn run(scene: &str, tag: &str, extra: &[&str]) -> PathBuf {
-    let out = std::env::temp_dir().join(format!("strand-run-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+use temp_path::TempPath;
+
+fn run(scene: &str, tag: &str, extra: &[&str]) -> TempPath {
+    let out = TempPath::new(&format!("strand-run-{tag}"));
     let o = Command::new(env!("CARGO_BIN_EXE_strand"))
         .args(["run", scene, "--out", out.to_str().unwrap()])
         .args(extra)
@@ -77,7 +81,6 @@ fn static_scene_writes_centerline_wires_and_summary() {
             "{r:?}"
         );
     }
-    let _ = std::fs::remove_dir_all(out);
 }
 
 #[test]
@@ -124,7 +127,6 @@ fn dynamic_scene_writes_tip_energy_and_vtk() {
     assert!(en.windows(2).all(|w| w[1][4] >= w[0][4] - 1e-15));
     let frames = std::fs::read_dir(dir.join("vtk")).unwrap().count();
     assert_eq!(frames, 51);
-    let _ = std::fs::remove_dir_all(out);
 }
 
 /// A model that fails does not stop the others: the equivalent beam of this scene cannot take
@@ -133,8 +135,7 @@ fn dynamic_scene_writes_tip_energy_and_vtk() {
 /// files.
 #[test]
 fn a_failing_model_leaves_the_others_and_exits_with_failure() {
-    let out = std::env::temp_dir().join(format!("strand-run-iso-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+    let out = TempPath::new("strand-run-iso");
     std::fs::create_dir_all(&out).unwrap();
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
@@ -175,7 +176,6 @@ fn a_failing_model_leaves_the_others_and_exits_with_failure() {
     );
     let (_, tip) = csv(&out.join("traditional/tip.csv"));
     assert_eq!(tip.len(), 3);
-    let _ = std::fs::remove_dir_all(out);
 }
 
 /// `strand bend` on counts too large for the machine stops with a message naming the flags,
@@ -188,6 +188,7 @@ fn bend_refuses_counts_it_cannot_build() {
         ("1152921504606846976", "16", "overflows"),
         ("100000", "12", "64.1 GiB"),
     ] {
+        let refused = TempPath::new("strand-bend-refused");
         let o = Command::new(env!("CARGO_BIN_EXE_strand"))
             .args([
                 "bend",
@@ -199,10 +200,7 @@ fn bend_refuses_counts_it_cannot_build() {
                 "--segments-per-pitch",
                 segments,
                 "--out",
-                std::env::temp_dir()
-                    .join("strand-bend-refused")
-                    .to_str()
-                    .unwrap(),
+                refused.to_str().unwrap(),
             ])
             .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
             .output()
@@ -217,8 +215,7 @@ fn bend_refuses_counts_it_cannot_build() {
 /// (a one-layer strand, short: 3 pitches of 8 segments, one load reversal).
 #[test]
 fn bend_draws_its_curve() {
-    let out = std::env::temp_dir().join(format!("strand-bend-plot-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+    let out = TempPath::new("strand-bend-plot");
     let o = Command::new(env!("CARGO_BIN_EXE_strand"))
         .args([
             "bend",
@@ -244,5 +241,4 @@ fn bend_draws_its_curve() {
         let len = std::fs::metadata(out.join(f)).unwrap().len();
         assert!(len > 1000, "{f}: {len} bytes");
     }
-    std::fs::remove_dir_all(out).unwrap();
 }

@@ -1,6 +1,11 @@
 //! `strand section --json` on the bundled Table 1 scene prints the SPEC 8 sanity values.
 
+#[path = "common/temp_path.rs"]
+mod temp_path;
+
 use std::process::Command;
+
+use temp_path::TempPath;
 
 fn strand(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_strand"))
@@ -77,7 +82,7 @@ fn section_json_with_strain_and_curvature() {
 
 #[test]
 fn bad_scene_names_the_field() {
-    let dir = std::env::temp_dir().join(format!("strand-cli-test-{}", std::process::id()));
+    let dir = TempPath::new("strand-cli-test");
     std::fs::create_dir_all(&dir).unwrap();
     let p = dir.join("bad.json");
     let text = std::fs::read_to_string(concat!(
@@ -105,8 +110,8 @@ fn bad_scene_names_the_field() {
 
 /// Writes `validation/paper-fig7-g8.json` with its `section` object replaced by `section`
 /// (JSON text, or nothing when empty) to a temporary file.
-fn fig7_with_section(tag: &str, section: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("strand-cli-section-{}", std::process::id()));
+fn fig7_with_section(tag: &str, section: &str) -> TempPath {
+    let dir = TempPath::new(&format!("strand-cli-section-{tag}"));
     std::fs::create_dir_all(&dir).unwrap();
     let mut v: serde_json::Value = serde_json::from_str(
         &std::fs::read_to_string(concat!(
@@ -121,7 +126,7 @@ fn fig7_with_section(tag: &str, section: &str) -> std::path::PathBuf {
     if !section.is_empty() {
         obj.insert("section".into(), serde_json::from_str(section).unwrap());
     }
-    let p = dir.join(format!("{tag}.json"));
+    let p = dir.into_sub(format!("{tag}.json"));
     std::fs::write(&p, serde_json::to_string(&v).unwrap()).unwrap();
     p
 }
@@ -241,8 +246,7 @@ fn section_shows_the_stick_stiffness_and_both_values() {
 /// gives other per-wire values, so a flipped convention fails.
 #[test]
 fn section_reads_the_curvature_of_the_result_files() {
-    let out = std::env::temp_dir().join(format!("strand-cli-sign-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+    let out = TempPath::new("strand-cli-sign");
     let scene = "validation/paper-sec3-g12.json";
     let o = strand(&[
         "run",
@@ -320,5 +324,4 @@ fn section_reads_the_curvature_of_the_result_files() {
         checked += 1;
     }
     assert!(checked >= 3, "{checked} mixed rows");
-    let _ = std::fs::remove_dir_all(out);
 }

@@ -1,7 +1,11 @@
 //! `plot_run` draws every chart of a run from its files: a static and a dynamic run of the
 //! Table 1 strand (equivalent and traditional beams), PNG and SVG with their text.
 
+#[path = "common/temp_path.rs"]
+mod temp_path;
+
 use strand_scene::{RunOptions, Scene, run_scene};
+use temp_path::TempPath;
 
 fn scene(analysis: &str) -> Scene {
     scene_with(
@@ -51,11 +55,10 @@ fn a_run_is_drawn_from_its_files() {
             &["tip", "energy-equivalent", "energy-traditional", "overview"][..],
         ),
     ] {
-        let out = std::env::temp_dir().join(format!("strand-plot-{tag}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&out);
+        let out = TempPath::new(&format!("strand-plot-{tag}"));
         let scene = scene(analysis);
         let opts = RunOptions {
-            out: out.clone(),
+            out: out.to_path_buf(),
             vtk: false,
         };
         let s = run_scene(&scene, &opts, &mut |_, _| {}).unwrap();
@@ -70,7 +73,6 @@ fn a_run_is_drawn_from_its_files() {
         }
         let stiffness = std::fs::read_to_string(out.join("plots/stiffness.svg")).unwrap();
         assert!(stiffness.contains("K_min") && stiffness.contains("K_max"));
-        let _ = std::fs::remove_dir_all(out);
     }
 }
 
@@ -80,8 +82,7 @@ fn a_run_is_drawn_from_its_files() {
 #[test]
 fn a_span_shows_its_sag_midspan_and_ranges() {
     let supports = r#"[ { "at": "start", "kind": "pinned" }, { "at": "end", "kind": "pinned" } ]"#;
-    let out = std::env::temp_dir().join(format!("strand-plot-span-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+    let out = TempPath::new("strand-plot-span");
     let scene = scene_with(
         r#"{ "kind": "dynamic", "duration": 0.02, "integrator": "generalized-alpha",
              "time_step": 1e-3, "output_interval": 2e-3 }"#,
@@ -90,7 +91,7 @@ fn a_span_shows_its_sag_midspan_and_ranges() {
     );
     assert_eq!(scene.output.probes, vec![0.2], "midspan by default");
     let opts = RunOptions {
-        out: out.clone(),
+        out: out.to_path_buf(),
         vtk: false,
     };
     let s = run_scene(&scene, &opts, &mut |_, _| {}).unwrap();
@@ -116,5 +117,4 @@ fn a_span_shows_its_sag_midspan_and_ranges() {
     );
     let loop_svg = std::fs::read_to_string(plots.join("probe-0.2-loop.svg")).unwrap();
     assert!(loop_svg.contains("work of M dkappa"));
-    let _ = std::fs::remove_dir_all(out);
 }

@@ -3,8 +3,12 @@
 //! balance checks compare it against their round-off floor (`strand_core::round_off`), not
 //! against the kinetic energy of that motion, which is round-off too.
 
+#[path = "common/temp_path.rs"]
+mod temp_path;
+
 use serde_json::{Value, json};
 use strand_scene::{RunOptions, Scene, run_scene};
+use temp_path::TempPath;
 
 /// The section-3 strand (L = 1 m, E = 2e9 Pa), clamped at its start, without gravity, at rest.
 fn at_rest(law: &str, integrator: &str, direction: [f64; 3]) -> Value {
@@ -32,7 +36,7 @@ fn at_rest(law: &str, integrator: &str, direction: [f64; 3]) -> Value {
 
 #[test]
 fn a_strand_at_rest_without_load_runs_ok_without_energy_warnings() {
-    let out = std::env::temp_dir().join(format!("strand-rest-{}", std::process::id()));
+    let out = TempPath::new("strand-rest");
     let mut runs = 0;
     for law in ["continuous", "paper", "hysteretic"] {
         for integrator in ["verlet", "generalized-alpha"] {
@@ -41,7 +45,7 @@ fn a_strand_at_rest_without_load_runs_ok_without_energy_warnings() {
                 let v = at_rest(law, integrator, direction);
                 let scene = Scene::parse(&v.to_string()).unwrap();
                 let opts = RunOptions {
-                    out: out.clone(),
+                    out: out.to_path_buf(),
                     vtk: false,
                 };
                 let summaries = run_scene(&scene, &opts, &mut |_, _| {}).unwrap();
@@ -65,5 +69,4 @@ fn a_strand_at_rest_without_load_runs_ok_without_energy_warnings() {
         }
     }
     assert_eq!(runs, 36);
-    let _ = std::fs::remove_dir_all(&out);
 }

@@ -1,9 +1,13 @@
 //! `run_bending`: the virtual bending test through the scene runner writes the fine curve
 //! beside the section law's, and rejects bad input naming the option.
 
+#[path = "common/temp_path.rs"]
+mod temp_path;
+
 use std::path::PathBuf;
 
 use strand_scene::{BendingOptions, RunError, Scene, run_bending};
+use temp_path::TempPath;
 
 fn scene() -> Scene {
     let path =
@@ -23,10 +27,10 @@ fn options(out: PathBuf) -> BendingOptions {
 
 #[test]
 fn bending_curve_sits_beside_the_law() {
-    let out = std::env::temp_dir().join(format!("strand-bend-{}", std::process::id()));
+    let out = TempPath::new("strand-bend");
     let s = scene();
     let mut seen = 0;
-    let summary = run_bending(&s, &options(out.clone()), &mut |_, _| seen += 1).unwrap();
+    let summary = run_bending(&s, &options(out.to_path_buf()), &mut |_, _| seen += 1).unwrap();
     assert_eq!(seen, 3, "the tension step and two curvatures");
     let [[k0, m0, law0], [k1, m1, law1]] = summary.points[..] else {
         panic!("two points: {:?}", summary.points)
@@ -53,18 +57,17 @@ fn bending_curve_sits_beside_the_law() {
     assert!(csv.starts_with("imposed_curvature,curvature,moment,law_moment,stiffness"));
     assert_eq!(csv.lines().count(), 3);
     assert!(out.join("summary.json").exists());
-    std::fs::remove_dir_all(&out).ok();
 }
 
 #[test]
 fn bad_bending_input_names_the_option() {
     let s = scene();
-    let out = std::env::temp_dir().join("strand-bend-bad");
+    let out = TempPath::new("strand-bend-bad");
     for (opts, word) in [
         (
             BendingOptions {
                 tension: -1.0,
-                ..options(out.clone())
+                ..options(out.to_path_buf())
             },
             "--tension",
         ),
@@ -72,21 +75,21 @@ fn bad_bending_input_names_the_option() {
         (
             BendingOptions {
                 curvatures: vec![0.5, 0.5],
-                ..options(out.clone())
+                ..options(out.to_path_buf())
             },
             "--curvatures",
         ),
         (
             BendingOptions {
                 curvatures: vec![0.5, 0.0],
-                ..options(out.clone())
+                ..options(out.to_path_buf())
             },
             "--curvatures",
         ),
         (
             BendingOptions {
                 pitches: 2,
-                ..options(out.clone())
+                ..options(out.to_path_buf())
             },
             "--pitches",
         ),

@@ -4,9 +4,12 @@
 //! no law runs `hysteretic`.
 
 mod common;
+#[path = "common/temp_path.rs"]
+mod temp_path;
 
 use strand_core::LawKind;
 use strand_scene::{RunOptions, Scene, run_scene};
+use temp_path::TempPath;
 
 fn fig14(law: Option<&str>) -> serde_json::Value {
     let text = std::fs::read_to_string(concat!(
@@ -36,9 +39,9 @@ fn fig14(law: Option<&str>) -> serde_json::Value {
 fn non_potential_work_is_booked_apart_from_dissipation() {
     for law in ["continuous", "hysteretic"] {
         let scene = Scene::parse(&fig14(Some(law)).to_string()).unwrap();
-        let out = std::env::temp_dir().join(format!("strand-ledger-{law}-{}", std::process::id()));
+        let out = TempPath::new(&format!("strand-ledger-{law}"));
         let opts = RunOptions {
-            out: out.clone(),
+            out: out.to_path_buf(),
             vtk: false,
         };
         let summary = run_scene(&scene, &opts, &mut |_, _| {}).unwrap().remove(0);
@@ -92,7 +95,6 @@ fn non_potential_work_is_booked_apart_from_dissipation() {
                 assert!(!warned);
             }
         }
-        std::fs::remove_dir_all(out).ok();
     }
 }
 

@@ -5,12 +5,15 @@
 //! `bad_input.rs`.)
 
 mod common;
+#[path = "common/temp_path.rs"]
+mod temp_path;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use nalgebra::{Rotation3, Unit, Vector3};
 use serde_json::{Value, json};
 use strand_scene::{RunOptions, Scene, run_scene};
+use temp_path::TempPath;
 
 /// Direction of every strand here: out of every coordinate plane.
 const DIR: [f64; 3] = [1.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0];
@@ -19,16 +22,15 @@ const E: f64 = 2.0e8;
 const RHO: f64 = 7801.0;
 const D: f64 = 3.0e-3;
 
-fn run(scene: Value, tag: &str) -> PathBuf {
+fn run(scene: Value, tag: &str) -> TempPath {
     let scene = Scene::parse(&scene.to_string()).expect("valid scene");
-    let out = std::env::temp_dir().join(format!("strand-fine-fields-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+    let out = TempPath::new(&format!("strand-fine-fields-{tag}"));
     let opts = RunOptions {
-        out: out.clone(),
+        out: out.to_path_buf(),
         vtk: false,
     };
     run_scene(&scene, &opts, &mut |_, _| {}).expect("run succeeds");
-    out.join("fine")
+    out.into_sub("fine")
 }
 
 /// Tip positions over time.

@@ -3,27 +3,26 @@
 //! energy balance, the scene's axes).
 
 mod common;
-
-use std::path::PathBuf;
+#[path = "common/temp_path.rs"]
+mod temp_path;
 
 use serde_json::json;
 use strand_scene::{RunOptions, Scene, run_scene};
+use temp_path::TempPath;
 
-fn out_dir(tag: &str) -> PathBuf {
-    let out = std::env::temp_dir().join(format!("strand-fine-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
-    out
+fn out_dir(tag: &str) -> TempPath {
+    TempPath::new(&format!("strand-fine-{tag}"))
 }
 
-fn run(scene: serde_json::Value, tag: &str) -> PathBuf {
+fn run(scene: serde_json::Value, tag: &str) -> TempPath {
     let scene = Scene::parse(&scene.to_string()).expect("valid scene");
     let out = out_dir(tag);
     let opts = RunOptions {
-        out: out.clone(),
+        out: out.to_path_buf(),
         vtk: false,
     };
     run_scene(&scene, &opts, &mut |_, _| {}).expect("run succeeds");
-    out.join("fine")
+    out.into_sub("fine")
 }
 
 /// A steel core wire without a layer, clamped, under gravity: small deflection.

@@ -14,6 +14,8 @@
 mod common;
 #[path = "common/section_loop.rs"]
 mod section_loop;
+#[path = "common/temp_path.rs"]
+mod temp_path;
 
 use common::csv_columns;
 use serde_json::json;

@@ -2,7 +2,11 @@
 //! loading curve between the all-slip and all-stick lines, and the hysteresis loop's area
 //! equal to the slip work booked around it.
 
+#[path = "common/temp_path.rs"]
+mod temp_path;
+
 use strand_scene::{LawBendingOptions, Scene, run_law_bending};
+use temp_path::TempPath;
 
 const SCENE: &str = r#"{
   "name": "steel-1x19",
@@ -31,7 +35,7 @@ const SCENE: &str = r#"{
 #[test]
 fn the_loop_area_is_the_slip_work() {
     let scene = Scene::parse(SCENE).unwrap();
-    let out = std::env::temp_dir().join(format!("strand-law-bending-{}", std::process::id()));
+    let out = TempPath::new("strand-law-bending");
     let steps = 200;
     let s = run_law_bending(
         &scene,
@@ -39,12 +43,11 @@ fn the_loop_area_is_the_slip_work() {
             tension: 1e4,
             amplitude: None,
             steps,
-            out: out.clone(),
+            out: out.to_path_buf(),
         },
     )
     .unwrap();
     assert!(out.join("law-bending.csv").exists());
-    std::fs::remove_dir_all(&out).ok();
     for p in &s.points[..=steps] {
         let (lo, hi) = (s.k_min * p[0], s.k_max * p[0]);
         assert!(
@@ -73,7 +76,7 @@ fn the_loop_area_is_the_slip_work() {
 fn loading_moments_first_loading() {
     let scene = Scene::parse(SCENE).unwrap();
     let law = strand_core::SectionLaw::with_options(&scene.strand, scene.law, &scene.section);
-    let out = std::env::temp_dir().join(format!("strand-law-loading-{}", std::process::id()));
+    let out = TempPath::new("strand-law-loading");
     let (tension, steps) = (1e4, 40);
     let s = run_law_bending(
         &scene,
@@ -81,11 +84,10 @@ fn loading_moments_first_loading() {
             tension,
             amplitude: None,
             steps,
-            out: out.clone(),
+            out: out.to_path_buf(),
         },
     )
     .unwrap();
-    std::fs::remove_dir_all(&out).ok();
     let kappa: Vec<f64> = s.points[1..=steps].iter().map(|p| p[0]).collect();
     let m1 = strand_scene::loading_moments(&law, tension, &kappa, 1);
     for (m, p) in m1.iter().zip(&s.points[1..=steps]) {

@@ -6,36 +6,22 @@
 //! frames' mean.
 
 mod common;
+#[path = "common/temp_path.rs"]
+mod temp_path;
 
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use common::csv_columns;
 use serde_json::json;
 use strand_scene::{RunOptions, Scene, run_scene};
+use temp_path::TempPath;
 
-/// A run's output directory, removed when the test is done with it.
-struct Out(PathBuf);
-
-impl std::ops::Deref for Out {
-    type Target = Path;
-    fn deref(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl Drop for Out {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-fn run(scene: &serde_json::Value, tag: &str) -> Out {
+fn run(scene: &serde_json::Value, tag: &str) -> TempPath {
     let scene = Scene::parse(&scene.to_string()).expect("valid scene");
-    let out = std::env::temp_dir().join(format!("strand-probes-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+    let out = TempPath::new(&format!("strand-probes-{tag}"));
     let opts = RunOptions {
-        out: out.clone(),
+        out: out.to_path_buf(),
         vtk: true,
     };
     let summaries = run_scene(&scene, &opts, &mut |_, _| {}).expect("run succeeds");
@@ -47,7 +33,7 @@ fn run(scene: &serde_json::Value, tag: &str) -> Out {
             s.warnings
         );
     }
-    Out(out)
+    out
 }
 
 /// A pendulum of the paper's strand, pinned at the start, falling under gravity from along

@@ -3,16 +3,18 @@
 //! fails keeps its files and leaves the others to run), the fine model's step and frames, and
 //! result files that run from s = 0 to s = L with no `NaN` or `inf`.
 
+#[path = "common/temp_path.rs"]
+mod temp_path;
+
 use std::path::{Path, PathBuf};
 
 use serde_json::{Value, json};
 use strand_fine as fine;
 use strand_scene::{Failure, RunOptions, RunSummary, Scene, run_scene};
+use temp_path::TempPath;
 
-fn out_dir(tag: &str) -> PathBuf {
-    let out = std::env::temp_dir().join(format!("strand-limits-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
-    out
+fn out_dir(tag: &str) -> TempPath {
+    TempPath::new(&format!("strand-limits-{tag}"))
 }
 
 /// The Table 1 strand, clamped at the start, under g = 8 along -y.
@@ -33,15 +35,15 @@ fn scene(analysis: Value, models: Value) -> Value {
     })
 }
 
-fn run(v: &Value, tag: &str) -> (Vec<RunSummary>, PathBuf) {
+fn run(v: &Value, tag: &str) -> (Vec<RunSummary>, TempPath) {
     let scene = Scene::parse(&v.to_string()).expect("a valid scene");
     run_parsed(&scene, tag)
 }
 
-fn run_parsed(scene: &Scene, tag: &str) -> (Vec<RunSummary>, PathBuf) {
+fn run_parsed(scene: &Scene, tag: &str) -> (Vec<RunSummary>, TempPath) {
     let out = out_dir(tag);
     let opts = RunOptions {
-        out: out.clone(),
+        out: out.to_path_buf(),
         vtk: false,
     };
     let s = run_scene(scene, &opts, &mut |_, _| {}).expect("summaries are written");

@@ -17,6 +17,9 @@
 //! The scenes in `tests/scenes/` (runs that hung, panicked or failed where they must not) run
 //! as regressions with their expected outcome (`tests/scenes/expected.json`).
 
+#[path = "common/temp_path.rs"]
+mod temp_path;
+
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::sync::mpsc;
@@ -31,6 +34,7 @@ use strand_scene::{
     Analysis as SceneAnalysis, BeamModelKind, Failure, IntegratorKind, RunOptions, RunSummary,
     Scene, SupportKind, build_beam, run_scene,
 };
+use temp_path::TempPath;
 
 /// A run that takes longer than this is taken for a hang. The largest scene here (12 wires,
 /// 16 elements, 24 fine segments per wire, a 2000-step limit) runs in about a second; the bound
@@ -47,10 +51,8 @@ fn hang() -> Duration {
 /// Step limit of every generated scene, so that a run is short whatever the stable step.
 const MAX_STEPS: u64 = 2000;
 
-fn out_dir(tag: &str) -> PathBuf {
-    let out = std::env::temp_dir().join(format!("strand-prop-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
-    out
+fn out_dir(tag: &str) -> TempPath {
+    TempPath::new(&format!("strand-prop-{tag}"))
 }
 
 /// Largest wire diameter (relative to the core's) at which `wires` wires at `lay_deg` fit
@@ -418,7 +420,7 @@ fn clean(dir: &Path) -> Result<(), String> {
 fn check_run(scene: &Scene, tag: &str) -> Result<Vec<RunSummary>, String> {
     let out = out_dir(tag);
     let opts = RunOptions {
-        out: out.clone(),
+        out: out.to_path_buf(),
         vtk: true,
     };
     let (tx, rx) = mpsc::channel();
@@ -457,7 +459,6 @@ fn check_run(scene: &Scene, tag: &str) -> Result<Vec<RunSummary>, String> {
         }
     }
     clean(&out)?;
-    let _ = std::fs::remove_dir_all(&out);
     Ok(summaries)
 }
 
@@ -565,13 +566,10 @@ struct Tally {
     limited: usize,
 }
 
-/// Runs `v` (a scene) and checks every model's outcome, counting it in `tally`.
-fn check_scene(v: &Value, tally: &RefCell<Tally>) -> Result<(), TestCaseError> {
-    // The scene being run, for a run stopped from outside (e.g. one that takes too long).
-    let _ = std::fs::write(
-        std::env::temp_dir().join(format!("strand-prop-current-{}.json", std::process::id())),
-        v.to_string(),
-    );
+/// Runs `v` (a scene) and checks every model's outcome, counting it in `tally`; the scene is
+/// written to `current` first, for a run stopped from outside (e.g. one that takes too long).
+fn check_scene(v: &Value, current: &Path, tally: &RefCell<Tally>) -> Result<(), TestCaseError> {
+    let _ = std::fs::write(current, v.to_string());
     let scene = match Scene::parse(&v.to_string()) {
         Ok(s) => s,
         // A scene the validation refuses (e.g. a pitch rule past its cap) names the field.
@@ -641,7 +639,10 @@ fn random_scenes_end_ok_or_failed_with_a_reason() {
         ..Config::default()
     };
     let tally = RefCell::new(Tally::default());
-    let result = TestRunner::new(config).run(&params(), |p| check_scene(&scene_json(&p), &tally));
+    let current = TempPath::new("strand-prop-current");
+    let result = TestRunner::new(config).run(&params(), |p| {
+        check_scene(&scene_json(&p), &current, &tally)
+    });
     if let Err(e) = result {
         panic!("{e}");
     }
@@ -723,5 +724,4 @@ fn the_file_check_finds_non_finite_numbers() {
     std::fs::write(&f, "s,x\n0,1\n").unwrap();
     std::fs::write(dir.join("m/summary.json"), r#"{"tip": [NaN, 0]}"#).unwrap();
     assert!(clean(&dir).is_err());
-    let _ = std::fs::remove_dir_all(dir);
 }

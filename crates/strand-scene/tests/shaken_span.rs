@@ -19,6 +19,8 @@
 mod common;
 #[path = "common/section_loop.rs"]
 mod section_loop;
+#[path = "common/temp_path.rs"]
+mod temp_path;
 
 use std::path::Path;
 

@@ -12,14 +12,17 @@
 //! the integrator's numerical damping and is measured at h and h/2.
 
 mod common;
+#[path = "common/temp_path.rs"]
+mod temp_path;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use common::csv_columns;
 use serde_json::json;
 use strand_core::{LawKind, SectionLaw};
 use strand_scene::decay::decay;
 use strand_scene::{RunOptions, RunSummary, Scene, run_scene};
+use temp_path::TempPath;
 
 const LENGTH: f64 = 20.0;
 /// After the first fall.
@@ -61,18 +64,17 @@ fn span(friction: f64, step: f64, models: serde_json::Value) -> Scene {
     Scene::parse(&scene.to_string()).expect("valid scene")
 }
 
-fn run(scene: &Scene, tag: &str) -> (PathBuf, RunSummary) {
-    let out = std::env::temp_dir().join(format!("strand-span-decay-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+fn run(scene: &Scene, tag: &str) -> (TempPath, RunSummary) {
+    let out = TempPath::new(&format!("strand-span-decay-{tag}"));
     let opts = RunOptions {
-        out: out.clone(),
+        out: out.to_path_buf(),
         vtk: false,
     };
     let mut summaries = run_scene(scene, &opts, &mut |_, _| {}).expect("run succeeds");
     assert_eq!(summaries.len(), 1);
     let s = summaries.remove(0);
     assert!(!s.failed(), "{:?}", s.failure());
-    (out.join(&s.model), s)
+    (out.into_sub(&s.model), s)
 }
 
 /// Per complete cycle of the midspan probe after `FROM`: (loss of mechanical energy, slip

@@ -2,8 +2,12 @@
 //! most 60 steps and 600 Newton iterations, with no warning, to the equilibrium that small
 //! steps of at most L / 400 reach at the same tolerance (tip within 1e-9 L).
 
+#[path = "common/temp_path.rs"]
+mod temp_path;
+
 use strand_ancf::statics::{StaticOptions, solve_static};
 use strand_scene::{BeamModelKind, RunOptions, Scene, build_beam, run_scene};
+use temp_path::TempPath;
 
 #[test]
 fn bundled_static_scenes_solve_without_cut_steps() {
@@ -20,13 +24,12 @@ fn bundled_static_scenes_solve_without_cut_steps() {
         let mut scene = Scene::parse(&text).unwrap();
         // The beam models only: the fine model is not this test's subject.
         scene.models.fine = None;
-        let out = std::env::temp_dir().join(format!("strand-static-{name}-{}", std::process::id()));
+        let out = TempPath::new(&format!("strand-static-{name}"));
         let opts = RunOptions {
-            out: out.clone(),
+            out: out.to_path_buf(),
             vtk: false,
         };
         let summaries = run_scene(&scene, &opts, &mut |_, _| {}).unwrap();
-        let _ = std::fs::remove_dir_all(&out);
         assert_eq!(summaries.len(), 2, "{name}");
         for (summary, which) in summaries
             .iter()

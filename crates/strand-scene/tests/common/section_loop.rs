@@ -3,10 +3,11 @@
 //! balance of the section over an interval of frames.
 
 use std::collections::HashMap;
-use std::path::PathBuf;
 
 use strand_core::{PlanarResponse, SectionLaw, Station};
 use strand_scene::{RunOptions, Scene, run_scene};
+
+use crate::temp_path::TempPath;
 
 /// Gauss-Legendre 3-point nodes and weights on [0, 1].
 const GAUSS3: [(f64, f64); 3] = [
@@ -27,11 +28,10 @@ pub fn gauss_points(elements: usize, h: f64) -> Vec<(f64, f64)> {
 /// model did not fail and that no step was cut: a step cut in halves commits a state between
 /// two frames, and with slip limits that change with the tension the law's path would then
 /// differ from the frames'. Returns the folder.
-pub fn run_uncut(scene: &Scene, name: &str) -> PathBuf {
-    let out = std::env::temp_dir().join(format!("{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+pub fn run_uncut(scene: &Scene, name: &str) -> TempPath {
+    let out = TempPath::new(name);
     let opts = RunOptions {
-        out: out.clone(),
+        out: out.to_path_buf(),
         vtk: false,
     };
     let s = run_scene(scene, &opts, &mut |_, _| {}).unwrap();
