@@ -459,8 +459,7 @@ impl BendingTest {
                 boxes: vec![hi - lo],
             };
         }
-        let pitches: Vec<f64> = strand.layers().iter().map(|l| l.pitch).collect();
-        PitchWindow::for_layers(&pitches, pitch * self.pitches as f64)
+        PitchWindow::for_strand(strand, self.pitches)
     }
 
     /// The one-layer window: rest x from `lo` to `hi` (m), whole pitches `pitch` (m).

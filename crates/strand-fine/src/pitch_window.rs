@@ -36,6 +36,14 @@ pub struct PitchWindow {
 }
 
 impl PitchWindow {
+    /// The window of a bending test of `strand` (several layers) `pitches` of its longest
+    /// pitch long: [`PitchWindow::for_layers`] over the layers' pitches.
+    pub fn for_strand(strand: &strand_core::Strand, pitches: usize) -> PitchWindow {
+        let layer_pitches: Vec<f64> = strand.layers().iter().map(|l| l.pitch).collect();
+        let longest = layer_pitches.iter().copied().fold(0.0, f64::max);
+        PitchWindow::for_layers(&layer_pitches, longest * pitches as f64)
+    }
+
     /// The window of a strand `length` (m) long with layers of pitch `pitches` (m, from the
     /// core outward): one box per layer, a whole pitch, without the boxes of layers whose
     /// pitch another box spans a whole number of times ([`COMMENSURATE`]); centred. Where the

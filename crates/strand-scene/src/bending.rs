@@ -153,9 +153,7 @@ pub fn law_path_moments(
     let strand = &scene.strand;
     let law = SectionLaw::with_options(strand, scene.law, &scene.section);
     let eps = tension / strand.axial_stiffness();
-    let layer_pitches: Vec<f64> = strand.layers().iter().map(|l| l.pitch).collect();
-    let longest = layer_pitches.iter().copied().fold(0.0, f64::max);
-    let window = PitchWindow::for_layers(&layer_pitches, longest * pitches as f64);
+    let window = PitchWindow::for_strand(strand, pitches);
     let mut path = LawPath::new(&law, strand, &window);
     curvatures
         .iter()
