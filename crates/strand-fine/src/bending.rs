@@ -563,6 +563,60 @@ impl BendingTest {
             .collect()
     }
 
+    /// The moment at the core's cuts in rest x `[lo, hi]` (m) split by layer (0 the core, up to
+    /// `layers`), averaged over the cuts (N m): each wire cut at its joint nearest the core's cut
+    /// plane, the loads of the part after the cut on the part before as [own joint moment, axial
+    /// force x arm, shear force x arm] about the core's joint point. Their sum over a layer is
+    /// that layer's part of the cut moment; over all layers, the core's cut moment.
+    pub fn layer_moment_parts(
+        model: &FineModel,
+        state: &ModelState,
+        layers: usize,
+        (lo, hi): (f64, f64),
+    ) -> Vec<[f64; 3]> {
+        let mut parts = vec![[0.0; 3]; layers + 1];
+        let core = &model.wires[0];
+        let cs = &state.wires[0].poses;
+        let mut cuts = 0;
+        for j in 0..core.chain.joints.len() {
+            let x = core.chain.rest[j].point(&core.chain.joints[j].offset_a).x;
+            if x < lo - 1e-9 || x > hi + 1e-9 {
+                continue;
+            }
+            let jt = &core.chain.joints[j];
+            let c = cs[j].point(&jt.offset_a);
+            let normal = (cs[j].tangent() + cs[j + 1].tangent()).normalize();
+            let l = jt.evaluate(&cs[j], &cs[j + 1]);
+            parts[0][0] += (l.torque_a + (cs[j].position - c).cross(&l.force_a)).z;
+            for (w, ws) in model.wires.iter().zip(&state.wires).skip(1) {
+                let (k, _) = w
+                    .chain
+                    .joints
+                    .iter()
+                    .enumerate()
+                    .map(|(k, jw)| (k, (ws.poses[k].point(&jw.offset_a) - c).dot(&normal).abs()))
+                    .min_by(|a, b| a.1.total_cmp(&b.1))
+                    .unwrap();
+                let jw = &w.chain.joints[k];
+                let lw = jw.evaluate(&ws.poses[k], &ws.poses[k + 1]);
+                let q = ws.poses[k].point(&jw.offset_a);
+                let tangent = (ws.poses[k].tangent() + ws.poses[k + 1].tangent()).normalize();
+                let axial = tangent * lw.force_a.dot(&tangent);
+                let part = &mut parts[w.layer];
+                part[0] += (lw.torque_a + (ws.poses[k].position - q).cross(&lw.force_a)).z;
+                part[1] += (q - c).cross(&axial).z;
+                part[2] += (q - c).cross(&(lw.force_a - axial)).z;
+            }
+            cuts += 1;
+        }
+        for p in &mut parts {
+            for v in p.iter_mut() {
+                *v /= cuts as f64;
+            }
+        }
+        parts
+    }
+
     /// M / kappa (N m^2) over the window from rest x `lo` to `hi` (m) at `state`: the mean of
     /// the [`BendingTest::moment_profile`] over the window (trapezoid rule, linear between the
     /// cuts) over the core's mean curvature there (the change of its tangent angle, linear

@@ -320,49 +320,17 @@ fn control_strand_of(which: &str, inner: f64, outer: f64, scale: [f64; 3]) -> St
 }
 
 /// The moment at the core's cuts in rest x `[lo, hi]` split by layer (0 the core), averaged
-/// over the cuts (N m): each wire cut at its joint nearest the cut plane, its joint moment
-/// plus its joint force times the arm from the core's joint point (loads of the part after
-/// the cut on the part before), as the `layer_moments` example of `strand-scene` splits it.
+/// over the cuts (N m): [`strand_fine::BendingTest::layer_moment_parts`] summed per layer.
 fn layer_split(
     model: &strand_fine::FineModel,
     state: &strand_fine::ModelState,
-    (lo, hi): (f64, f64),
+    window: (f64, f64),
 ) -> Vec<f64> {
     let layers = model.wires.iter().map(|w| w.layer).max().unwrap_or(0);
-    let mut parts = vec![0.0; layers + 1];
-    let core = &model.wires[0];
-    let cs = &state.wires[0].poses;
-    let mut cuts = 0;
-    for j in 0..core.chain.joints.len() {
-        let x = core.chain.rest[j].point(&core.chain.joints[j].offset_a).x;
-        if x < lo - 1e-9 || x > hi + 1e-9 {
-            continue;
-        }
-        let jt = &core.chain.joints[j];
-        let c = cs[j].point(&jt.offset_a);
-        let normal = (cs[j].tangent() + cs[j + 1].tangent()).normalize();
-        let l = jt.evaluate(&cs[j], &cs[j + 1]);
-        parts[0] += (l.torque_a + (cs[j].position - c).cross(&l.force_a)).z;
-        for (w, ws) in model.wires.iter().zip(&state.wires).skip(1) {
-            let (k, _) = w
-                .chain
-                .joints
-                .iter()
-                .enumerate()
-                .map(|(k, jw)| (k, (ws.poses[k].point(&jw.offset_a) - c).dot(&normal).abs()))
-                .min_by(|a, b| a.1.total_cmp(&b.1))
-                .unwrap();
-            let jw = &w.chain.joints[k];
-            let lw = jw.evaluate(&ws.poses[k], &ws.poses[k + 1]);
-            let q = ws.poses[k].point(&jw.offset_a);
-            parts[w.layer] += (lw.torque_a
-                + (ws.poses[k].position - q).cross(&lw.force_a)
-                + (q - c).cross(&lw.force_a))
-            .z;
-        }
-        cuts += 1;
-    }
-    parts.iter().map(|p| p / cuts as f64).collect()
+    strand_fine::BendingTest::layer_moment_parts(model, state, layers, window)
+        .iter()
+        .map(|p| p.iter().sum())
+        .collect()
 }
 
 /// Layer by layer, the fine cell's softening against the law's terms: the cell of [`cell`]

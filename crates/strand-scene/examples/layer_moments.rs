@@ -86,7 +86,7 @@ fn main() {
         .run_observed(strand, &mut |p, model, state| {
             records.push(Record {
                 point: *p,
-                parts: layer_parts(model, state, layers, (lo, hi)),
+                parts: BendingTest::layer_moment_parts(model, state, layers, (lo, hi)),
                 contacts: contact_rows(model, state, (lo, hi)),
             });
             println!(
@@ -111,7 +111,7 @@ fn main() {
         p.tension,
         start.elapsed().as_secs_f64()
     );
-    let parts = layer_parts(&model, &state, layers, (lo, hi));
+    let parts = BendingTest::layer_moment_parts(&model, &state, layers, (lo, hi));
     let friction_free = BendingTest {
         friction: 0.0,
         curvatures: vec![p.curvature],
@@ -120,7 +120,7 @@ fn main() {
     let (c0, m0, s0) = friction_free
         .run_with_state(strand)
         .expect("frictionless test");
-    let parts0 = layer_parts(&m0, &s0, layers, (lo, hi));
+    let parts0 = BendingTest::layer_moment_parts(&m0, &s0, layers, (lo, hi));
     println!(
         "frictionless at kappa {:.5e}: M {:.5e} N m",
         c0.last().unwrap().curvature,
@@ -153,7 +153,10 @@ fn main() {
         ..test.clone()
     }
     .run_observed(strand, &mut |p, model, state| {
-        free.push((*p, layer_parts(model, state, layers, (lo, hi))))
+        free.push((
+            *p,
+            BendingTest::layer_moment_parts(model, state, layers, (lo, hi)),
+        ))
     })
     .expect("frictionless test along the path");
     path_table(&scene, strand, t, &records, &free, layers);
@@ -438,57 +441,6 @@ fn cpu_seconds() -> f64 {
             .unwrap_or(f64::NAN)
     };
     (tick(11) + tick(12)) / 100.0
-}
-
-/// Per layer (0 the core): wires' own joint moment, axial force x arm, shear force x arm (N m),
-/// averaged over the core's joints in [lo, hi].
-fn layer_parts(
-    model: &FineModel,
-    state: &ModelState,
-    layers: usize,
-    (lo, hi): (f64, f64),
-) -> Vec<[f64; 3]> {
-    let mut parts = vec![[0.0; 3]; layers + 1];
-    let core = &model.wires[0];
-    let cs = &state.wires[0].poses;
-    let mut cuts = 0;
-    for j in 0..core.chain.joints.len() {
-        let x = core.chain.rest[j].point(&core.chain.joints[j].offset_a).x;
-        if x < lo - 1e-9 || x > hi + 1e-9 {
-            continue;
-        }
-        let jt = &core.chain.joints[j];
-        let c = cs[j].point(&jt.offset_a);
-        let normal = (cs[j].tangent() + cs[j + 1].tangent()).normalize();
-        let l = jt.evaluate(&cs[j], &cs[j + 1]);
-        parts[0][0] += (l.torque_a + (cs[j].position - c).cross(&l.force_a)).z;
-        for (w, ws) in model.wires.iter().zip(&state.wires).skip(1) {
-            let (k, _) = w
-                .chain
-                .joints
-                .iter()
-                .enumerate()
-                .map(|(k, jw)| (k, (ws.poses[k].point(&jw.offset_a) - c).dot(&normal).abs()))
-                .min_by(|a, b| a.1.total_cmp(&b.1))
-                .unwrap();
-            let jw = &w.chain.joints[k];
-            let lw = jw.evaluate(&ws.poses[k], &ws.poses[k + 1]);
-            let q = ws.poses[k].point(&jw.offset_a);
-            let tangent = (ws.poses[k].tangent() + ws.poses[k + 1].tangent()).normalize();
-            let axial = tangent * lw.force_a.dot(&tangent);
-            let part = &mut parts[w.layer];
-            part[0] += (lw.torque_a + (ws.poses[k].position - q).cross(&lw.force_a)).z;
-            part[1] += (q - c).cross(&axial).z;
-            part[2] += (q - c).cross(&(lw.force_a - axial)).z;
-        }
-        cuts += 1;
-    }
-    for p in &mut parts {
-        for v in p.iter_mut() {
-            *v /= cuts as f64;
-        }
-    }
-    parts
 }
 
 /// Contact states and normal force per unit strand length (N/m) over the middle pitch, per
