@@ -1,7 +1,7 @@
 //! `cargo xtask validate` exits non-zero and names the failing checks when the model is
 //! broken, and exits zero on the scene as it is.
 
-#[path = "common/temp_path.rs"]
+#[path = "../../crates/strand-scene/tests/common/temp_path.rs"]
 mod temp_path;
 
 use std::process::Command;

@@ -1,7 +1,7 @@
 //! `strand run` writes the SPEC 6 files: a static scene (the paper's section-3 strand under
 //! g = 12) and a dynamic one (the Fig. 8 pinned pendulum).
 
-#[path = "common/temp_path.rs"]
+#[path = "../../strand-scene/tests/common/temp_path.rs"]
 mod temp_path;
 
 use std::path::Path;

@@ -1,6 +1,6 @@
 //! `strand section --json` on the bundled Table 1 scene prints the SPEC 8 sanity values.
 
-#[path = "common/temp_path.rs"]
+#[path = "../../strand-scene/tests/common/temp_path.rs"]
 mod temp_path;
 
 use std::process::Command;

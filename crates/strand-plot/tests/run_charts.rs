@@ -1,7 +1,7 @@
 //! `plot_run` draws every chart of a run from its files: a static and a dynamic run of the
 //! Table 1 strand (equivalent and traditional beams), PNG and SVG with their text.
 
-#[path = "common/temp_path.rs"]
+#[path = "../../strand-scene/tests/common/temp_path.rs"]
 mod temp_path;
 
 use strand_scene::{RunOptions, Scene, run_scene};

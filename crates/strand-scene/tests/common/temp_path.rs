@@ -1,4 +1,6 @@
 //! A test's output in the system temp directory, removed when the test is done with it.
+//! The test files of strand-scene, strand-cli, strand-plot and xtask include this one file
+//! (`#[path]`).
 
 use std::path::{Path, PathBuf};
 
