@@ -44,38 +44,25 @@ fn main() {
         p.secant_stiffness() / k_min,
         stretched_min_bending_stiffness(&strand, eps) / k_min
     );
+    // The cut moment over the middle third of the core's joints, split into the core's part
+    // and the wires' own moments, axial forces x arms and shear forces x arms.
     let core = &model.wires[0];
-    let cs = &state.wires[0].poses;
     let n = core.chain.len();
-    let mut parts = [0.0; 4];
-    let mut cuts = 0;
-    for j in (n / 3)..(2 * n / 3) {
-        let jt = &core.chain.joints[j];
-        let c = cs[j].point(&jt.offset_a);
-        let normal = (cs[j].tangent() + cs[j + 1].tangent()).normalize();
-        let l = jt.evaluate(&cs[j], &cs[j + 1]);
-        parts[0] += (l.torque_a + (cs[j].position - c).cross(&l.force_a)).z;
-        for (w, ws) in model.wires.iter().zip(&state.wires).skip(1) {
-            let (k, _) = w
-                .chain
-                .joints
-                .iter()
-                .enumerate()
-                .map(|(k, jw)| (k, (ws.poses[k].point(&jw.offset_a) - c).dot(&normal).abs()))
-                .min_by(|a, b| a.1.total_cmp(&b.1))
-                .unwrap();
-            let jw = &w.chain.joints[k];
-            let lw = jw.evaluate(&ws.poses[k], &ws.poses[k + 1]);
-            let q = ws.poses[k].point(&jw.offset_a);
-            let tangent = (ws.poses[k].tangent() + ws.poses[k + 1].tangent()).normalize();
-            let axial = tangent * lw.force_a.dot(&tangent);
-            parts[1] += (lw.torque_a + (ws.poses[k].position - q).cross(&lw.force_a)).z;
-            parts[2] += (q - c).cross(&axial).z;
-            parts[3] += (q - c).cross(&(lw.force_a - axial)).z;
+    let rest_x = |j: usize| core.chain.rest[j].point(&core.chain.joints[j].offset_a).x;
+    let layers = model.wires.iter().map(|w| w.layer).max().unwrap_or(0);
+    let split = BendingTest::layer_moment_parts(
+        &model,
+        &state,
+        layers,
+        (rest_x(n / 3), rest_x(2 * n / 3 - 1)),
+    );
+    let mut parts = [split[0][0], 0.0, 0.0, 0.0];
+    for layer in &split[1..] {
+        for (p, v) in parts[1..].iter_mut().zip(layer) {
+            *p += v;
         }
-        cuts += 1;
     }
-    let [core_m, own, axial, shear] = parts.map(|x| x / cuts as f64 / scale);
+    let [core_m, own, axial, shear] = parts.map(|x| x / scale);
     println!(
         "moment over K_min kappa: core {core_m:.5}, wires' own {own:.5}, wires' axial forces x \
          arms {axial:.5}, shear x arms {shear:.5}; sum {:.5}",
