@@ -10,18 +10,14 @@
 
 mod common;
 
-use nalgebra::Vector3;
-use strand_core::{Strand, StrandSpec};
-use strand_fine::{
-    ContactOptions, Discretisation, FineModel, StaticOptions, Support, solve_static_with_progress,
-};
+use strand_fine::{StaticOptions, solve_static_with_progress};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let arg = |i: usize, d: f64| args.get(i).map_or(d, |s| s.parse().unwrap());
     let env = |k: &str, d: f64| std::env::var(k).map_or(d, |v| v.parse().unwrap());
     let (g, steps, stages) = (arg(1, 8.0), arg(2, 20.0) as usize, arg(3, 0.0) as usize);
-    let m = model(g, env("SEGMENTS", 77.0) as usize);
+    let m = common::fig7_model_from_env(g, env("SEGMENTS", 77.0) as usize);
     let opts = StaticOptions {
         load_steps: steps,
         penalty_stages: stages,
@@ -42,25 +38,4 @@ fn main() {
         tip.z,
         common::cpu_seconds()
     );
-}
-
-fn model(g: f64, segments: usize) -> FineModel {
-    let length = std::env::var("LENGTH").map_or(0.4, |v| v.parse().unwrap());
-    let strand = Strand::new(StrandSpec::paper(length, 2.0e8, 7801.0)).unwrap();
-    let mut m = FineModel::from_strand(
-        &strand,
-        Discretisation {
-            core_segments: segments,
-            wire_segments: segments,
-        },
-        Support::Clamped,
-        Support::Free,
-    );
-    m.gravity = Vector3::new(0.0, -g, 0.0);
-    let mut contact = ContactOptions::default();
-    if std::env::var("FRICTION").is_ok_and(|v| v == "0") {
-        contact.friction = Some(0.0);
-    }
-    m.add_contacts(&strand, &contact);
-    m
 }

@@ -9,12 +9,8 @@
 
 mod common;
 
-use nalgebra::Vector3;
-use strand_core::{Strand, StrandSpec};
 use strand_fine::pseudo_transient::PseudoTransientOptions;
-use strand_fine::{
-    ContactOptions, Discretisation, FineModel, SettledOptions, Support, solve_settled,
-};
+use strand_fine::{SettledOptions, solve_settled};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -23,22 +19,7 @@ fn main() {
     // `LENGTH` (m) and `SEGMENTS` (a wire) change the strand (default 0.4 m, 77).
     let env = |k: &str, d: f64| std::env::var(k).map_or(d, |v| v.parse().unwrap());
     let segments = env("SEGMENTS", 77.0) as usize;
-    let strand = Strand::new(StrandSpec::paper(env("LENGTH", 0.4), 2.0e8, 7801.0)).unwrap();
-    let mut m = FineModel::from_strand(
-        &strand,
-        Discretisation {
-            core_segments: segments,
-            wire_segments: segments,
-        },
-        Support::Clamped,
-        Support::Free,
-    );
-    m.gravity = Vector3::new(0.0, -g, 0.0);
-    let mut contact = ContactOptions::default();
-    if std::env::var("FRICTION").is_ok_and(|v| v == "0") {
-        contact.friction = Some(0.0);
-    }
-    m.add_contacts(&strand, &contact);
+    let m = common::fig7_model_from_env(g, segments);
     let mut opts = SettledOptions::default();
     if handover > 0.0 {
         opts.pseudo_transient = Some(PseudoTransientOptions {

@@ -11,7 +11,23 @@ use strand_fine::{ContactOptions, Discretisation, FineModel, SettledReport, Supp
 /// end, `segments` segments a wire (77: the figure's), gravity `g` (m/s^2) along -y, and the
 /// default contacts.
 pub fn fig7_model(g: f64, segments: usize) -> FineModel {
-    let strand = Strand::new(StrandSpec::paper(0.4, 2.0e8, 7801.0)).unwrap();
+    paper_model(g, segments, 0.4, &ContactOptions::default())
+}
+
+/// [`fig7_model`] with the strand's length and contacts from the environment: `LENGTH` (m,
+/// default 0.4), `FRICTION=0` for frictionless contacts.
+pub fn fig7_model_from_env(g: f64, segments: usize) -> FineModel {
+    let length = std::env::var("LENGTH").map_or(0.4, |v| v.parse().unwrap());
+    let mut contact = ContactOptions::default();
+    if std::env::var("FRICTION").is_ok_and(|v| v == "0") {
+        contact.friction = Some(0.0);
+    }
+    paper_model(g, segments, length, &contact)
+}
+
+/// The Table 1 strand `length` (m) long as [`fig7_model`] builds it, with `contact`.
+fn paper_model(g: f64, segments: usize, length: f64, contact: &ContactOptions) -> FineModel {
+    let strand = Strand::new(StrandSpec::paper(length, 2.0e8, 7801.0)).unwrap();
     let mut m = FineModel::from_strand(
         &strand,
         Discretisation {
@@ -22,7 +38,7 @@ pub fn fig7_model(g: f64, segments: usize) -> FineModel {
         Support::Free,
     );
     m.gravity = Vector3::new(0.0, -g, 0.0);
-    m.add_contacts(&strand, &ContactOptions::default());
+    m.add_contacts(&strand, contact);
     m
 }
 
