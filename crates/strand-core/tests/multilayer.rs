@@ -202,6 +202,41 @@ fn rk4_gain(
     (t[j] - f[j]) / f[j]
 }
 
+/// Every layer's friction limit of the `continuous` law on `s`, both sides, at capstan angle
+/// `theta` and strain `eps`, against [`rk4_gain`] on `steps` and `2 steps` steps: within ten
+/// times their difference (fourth order: the finer run is 16 times closer), 1e-12 of the gain
+/// for the round-off of both sums, and the reference's own round-off (RK4 rounds each tension
+/// by a few u in each step, so (T_j - F_j) / F_j carries up to 2 steps x 2u x (1 + |gain|)
+/// however small the gain: a gain of 1.8e-3 once came out 4e-14 off).
+fn limits_match_rk4(
+    s: &Strand,
+    pressure: SlipPressure,
+    theta: f64,
+    eps: f64,
+    steps: usize,
+) -> Result<(), TestCaseError> {
+    let law = law(s, LawKind::Continuous, pressure);
+    for (j, h) in s.layers().iter().enumerate() {
+        let w = &h.spec.wire;
+        let a = h.lay_angle();
+        // Papailiou's projection cos(alpha) of the tension increment (the default limit).
+        let per_gain = a.cos() * w.material.youngs_modulus * w.area() * a.cos().powi(2) * eps;
+        let cap = law.friction_limit(j, eps, theta);
+        for (side, sign) in [(0, 1.0), (1, -1.0)] {
+            let got = cap[side] / per_gain;
+            let coarse = sign * rk4_gain(s, pressure, j, theta, sign, steps);
+            let fine = sign * rk4_gain(s, pressure, j, theta, sign, 2 * steps);
+            let rk4_round = 2.0 * steps as f64 * f64::EPSILON * (1.0 + fine.abs());
+            let tol = 10.0 * (fine - coarse).abs() + 1e-12 * fine.abs() + rk4_round;
+            prop_assert!(
+                got.is_finite() && (got - fine).abs() <= tol,
+                "layer {j} side {side}: {got} against RK4 {fine} (tolerance {tol})"
+            );
+        }
+    }
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(128))]
 
@@ -217,26 +252,7 @@ proptest! {
     fn friction_limit_solves_the_pressure_system(
         s in multilayer(), pressure in pressures(), theta in 0.0..FRAC_PI_2, eps in 1e-4..1e-2f64,
     ) {
-        let law = law(&s, LawKind::Continuous, pressure);
-        for (j, h) in s.layers().iter().enumerate() {
-            let w = &h.spec.wire;
-            let a = h.lay_angle();
-            // Papailiou's projection cos(alpha) of the tension increment (the default limit).
-            let per_gain = a.cos() * w.material.youngs_modulus * w.area() * a.cos().powi(2) * eps;
-            let cap = law.friction_limit(j, eps, theta);
-            for (side, sign) in [(0, 1.0), (1, -1.0)] {
-                let got = cap[side] / per_gain;
-                let coarse = sign * rk4_gain(&s, pressure, j, theta, sign, 400);
-                let fine = sign * rk4_gain(&s, pressure, j, theta, sign, 800);
-                // The reference's own round-off: RK4 rounds each tension by a few u of it in
-                // each of its 800 steps, so (T_j - F_j) / F_j carries up to 800 x 2u x (1 +
-                // |gain|) however small the gain (a gain of 1.8e-3 once came out 4e-14 off).
-                let rk4_round = 800.0 * f64::EPSILON * (1.0 + fine.abs());
-                let tol = 10.0 * (fine - coarse).abs() + 1e-12 * fine.abs() + rk4_round;
-                prop_assert!((got - fine).abs() <= tol,
-                    "layer {j} side {side}: {got} against RK4 {fine} (tolerance {tol})");
-            }
-        }
+        limits_match_rk4(&s, pressure, theta, eps, 400)?;
     }
 
     /// The same at friction coefficients of 3 to 100, where theta ||A|| passes the plain
@@ -249,24 +265,7 @@ proptest! {
         s in multilayer(), pressure in pressures(), theta in 0.1..FRAC_PI_2, mu in 3.0..100.0f64,
     ) {
         let s = Strand::new(StrandSpec { friction: mu, ..s.spec().clone() }).unwrap();
-        let law = law(&s, LawKind::Continuous, pressure);
-        let eps = 1e-3;
-        let steps = (40.0 * mu * theta).ceil() as usize;
-        for (j, h) in s.layers().iter().enumerate() {
-            let w = &h.spec.wire;
-            let a = h.lay_angle();
-            let per_gain = a.cos() * w.material.youngs_modulus * w.area() * a.cos().powi(2) * eps;
-            let cap = law.friction_limit(j, eps, theta);
-            for (side, sign) in [(0, 1.0), (1, -1.0)] {
-                let got = cap[side] / per_gain;
-                let coarse = sign * rk4_gain(&s, pressure, j, theta, sign, steps);
-                let fine = sign * rk4_gain(&s, pressure, j, theta, sign, 2 * steps);
-                let rk4_round = 2.0 * steps as f64 * f64::EPSILON * (1.0 + fine.abs());
-                let tol = 10.0 * (fine - coarse).abs() + 1e-12 * fine.abs() + rk4_round;
-                prop_assert!(got.is_finite() && (got - fine).abs() <= tol,
-                    "layer {j} side {side}: {got} against RK4 {fine} (tolerance {tol})");
-            }
-        }
+        limits_match_rk4(&s, pressure, theta, 1e-3, (40.0 * mu * theta).ceil() as usize)?;
     }
 
     /// Planar tangents dM/dkappa and dM/deps against central differences, away from the
