@@ -202,6 +202,45 @@ struct Work {
     lengths: Lengths,
     /// Workspace of [`converged`].
     round_off: [Vec<f64>; 2],
+    /// Workspace of [`within_measured_round_off`]: coordinates, forces, trial state.
+    probe: Probe,
+}
+
+impl Work {
+    /// The workspace of a solve of `beam`, the iterate at its reference.
+    fn new(beam: &Beam) -> Self {
+        let n = beam.dofs();
+        let b = beam.bandwidth();
+        Work {
+            force: vec![0.0; beam.coords()],
+            r: vec![0.0; n],
+            dq: vec![0.0; n],
+            s: vec![0.0; n],
+            b: vec![0.0; n],
+            trial: beam.initial_state(),
+            q_try: beam.reference().to_vec(),
+            k: BandMatrix::zeros(n, b, b),
+            solver: BandSolver::default(),
+            lengths: Lengths::of(beam),
+            round_off: [vec![0.0; n], vec![0.0; n]],
+            probe: Probe {
+                q: vec![0.0; beam.coords()],
+                force: vec![0.0; beam.coords()],
+                trial: beam.initial_state(),
+                spread: vec![0.0; n],
+            },
+        }
+    }
+}
+
+/// Buffers of [`within_measured_round_off`], apart from the iteration's own so that the
+/// iterate's trial state, residual and tangent are left as they are.
+struct Probe {
+    q: Vec<f64>,
+    force: Vec<f64>,
+    trial: Vec<f64>,
+    /// The largest change of each free residual component over the perturbations (N).
+    spread: Vec<f64>,
 }
 
 /// Where a continuation step's corrector may move: along the pseudo arc-length hyperplane
@@ -220,20 +259,7 @@ pub fn solve_static(
     progress: &mut dyn FnMut(f64),
 ) -> Result<StaticSolution, StaticError> {
     let n = beam.dofs();
-    let b = beam.bandwidth();
-    let mut w = Work {
-        force: vec![0.0; beam.coords()],
-        r: vec![0.0; n],
-        dq: vec![0.0; n],
-        s: vec![0.0; n],
-        b: vec![0.0; n],
-        trial: beam.initial_state(),
-        q_try: beam.reference().to_vec(),
-        k: BandMatrix::zeros(n, b, b),
-        solver: BandSolver::default(),
-        lengths: Lengths::of(beam),
-        round_off: [vec![0.0; n], vec![0.0; n]],
-    };
+    let mut w = Work::new(beam);
     let mut g_free = vec![0.0; n];
     gather_free(beam, beam.gravity_force(), &mut g_free);
     // A moving support loads the strand too: the elastic force of its displacement with the
@@ -502,6 +528,66 @@ fn converged(beam: &Beam, w: &mut Work, tol: f64) -> bool {
         .all(|(r, f)| r.abs() <= tol + ROUND_OFF * f64::EPSILON * f)
 }
 
+/// The unit round-offs of its coordinates by which [`within_measured_round_off`] moves the
+/// iterate, and the multiple of the residual's change it allows. The residual of the
+/// floating-point equilibrium is itself one sample of that change; a few samples' worth
+/// allows for the spread between samples.
+const MEASURED_ROUND_OFF: f64 = 4.0;
+
+/// Whether every component of the residual `w.r` at `w.q_try` is within `tol` (N) or within
+/// [`MEASURED_ROUND_OFF`] times the change the residual shows when every coordinate moves by
+/// its own unit round-off (two moves, with the signs of a fixed pattern and their opposite):
+/// the round-off the residual carries, measured rather than estimated from the tangent as
+/// [`converged`] does.
+///
+/// The estimate `eps (|K| |q|)_i` misses what the tangent leaves out: the law's strain is
+/// recovered from the neighbouring elements' mean strains too (module `strain_recovery`),
+/// and where the strand's tension is of the order of its round-off, the friction limits,
+/// which follow the strain, move with that round-off. On a strand held at both ends under a
+/// transverse load of 5e-5 N (strain 1e-12) the transverse residual changes under a one-ulp
+/// move by up to 79 times the estimate, and Newton, whose corrections are then 1e-14 m,
+/// cannot bring it below. Read only where Newton no longer makes progress (its line search
+/// damped to [`STALLED_STEP`], a step that did not halve the residual norm, or its
+/// iterations spent): a Newton iteration that still converges is left to meet
+/// [`converged`]. Costs two force evaluations without tangent.
+fn within_measured_round_off(
+    beam: &Beam,
+    w: &mut Work,
+    slip: &[f64],
+    tol: f64,
+) -> Result<bool, BeamError> {
+    let p = &mut w.probe;
+    p.spread.fill(0.0);
+    for sign in [1.0, -1.0] {
+        for (g, (x, y)) in w.q_try.iter().zip(p.q.iter_mut()).enumerate() {
+            // A fixed pattern of signs that looks random over the coordinates (the top bit of
+            // a multiplicative hash): a pattern that moved every position alike would be a
+            // rigid motion or a uniform stretch, which most forces do not feel.
+            let s = if (g as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 63 == 0 {
+                sign
+            } else {
+                -sign
+            };
+            *y = x + s * f64::EPSILON * x.abs();
+        }
+        beam.internal(&p.q, slip, &mut p.trial, &mut p.force, None, None)?;
+        for (g, (f, f0)) in p.force.iter().zip(&w.force).enumerate() {
+            if let Some(i) = beam.free_index(g) {
+                p.spread[i] = p.spread[i].max((f - f0).abs());
+            }
+        }
+    }
+    Ok(w.r
+        .iter()
+        .zip(&p.spread)
+        .all(|(r, d)| r.abs() <= tol + MEASURED_ROUND_OFF * d))
+}
+
+/// A line search that accepts no more than this fraction of Newton's correction marks an
+/// iteration that no longer makes progress (see [`within_measured_round_off`]), as does a
+/// step that leaves more than half the residual norm.
+const STALLED_STEP: f64 = 1.0 / 16.0;
+
 /// The largest absolute position coordinate of any node, held or free, per direction (m):
 /// the size of the numbers whose differences make the strains.
 fn position_extents(beam: &Beam, q: &[f64]) -> [f64; 3] {
@@ -562,8 +648,13 @@ fn newton(
 ) -> Result<(usize, f64, f64), (usize, String)> {
     let tol = opts.tolerance * load_norm;
     let mut r0 = residual(beam, w, slip, g_free, lambda, true).map_err(|e| (0, e.to_string()))?;
+    // Whether the last accepted step made no progress: damped to `STALLED_STEP` or below,
+    // or leaving more than half the residual norm.
+    let mut stalled = false;
+    let at_round_off =
+        |w: &mut Work| within_measured_round_off(beam, w, slip, tol).unwrap_or(false);
     for it in 1..=opts.max_iterations {
-        if converged(beam, w, tol) {
+        if converged(beam, w, tol) || (stalled && at_round_off(w)) {
             return Ok((it - 1, r0 / load_norm, lambda));
         }
         if !w.solver.factorize(&w.k) {
@@ -632,6 +723,7 @@ fn newton(
                         || r <= (1.0 - 0.25 * alpha) * r0
                         || alpha <= 1.0 / 64.0 =>
                 {
+                    stalled = alpha <= STALLED_STEP || r > 0.5 * r0;
                     r0 = r;
                     lambda += alpha * dl;
                     break;
@@ -644,7 +736,7 @@ fn newton(
             }
         }
     }
-    if converged(beam, w, tol) {
+    if converged(beam, w, tol) || at_round_off(w) {
         Ok((opts.max_iterations, r0 / load_norm, lambda))
     } else {
         Err((
@@ -656,5 +748,69 @@ fn newton(
                 largest_residual(beam, &w.r)
             ),
         ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::beam::{BeamSpec, ElementKind, Support};
+    use strand_core::{SectionLaw, Strand, StrandSpec};
+
+    /// The paper's strand, 1 m, held at both ends (clamped and pinned) under a small
+    /// transverse load, with the `continuous` law at friction 1: the family whose continuation
+    /// stalled at the round-off of its residual.
+    fn held_strand(gravity: f64) -> Beam {
+        let mut spec = StrandSpec::paper(1.0, 2.0e8, 7801.0);
+        spec.friction = 1.0;
+        let s = Strand::new(spec).unwrap();
+        Beam::new(
+            BeamSpec {
+                elements: 8,
+                bending_points: None,
+                mass_per_length: s.mass_per_length(),
+                element: ElementKind::Planar,
+                direction: [1.0, 0.0, 0.0],
+                gravity: [0.0, -gravity, 0.0],
+                start: Some(Support::Clamped),
+                end: Some(Support::Pinned),
+                ..Default::default()
+            },
+            SectionLaw::new(&s, LawKind::Continuous),
+        )
+        .unwrap()
+    }
+
+    /// The measured round-off accepts the solver's equilibrium and rejects it moved by
+    /// 1e-12 of the strand's length at one node: a move of a thousand times the unit
+    /// round-off of the coordinates it changes, which the forces resolve. It fails with the
+    /// allowance a million times larger.
+    #[test]
+    fn measured_round_off_accepts_the_equilibrium_and_rejects_a_moved_one() {
+        let beam = held_strand(1e-3);
+        let sol = solve_static(&beam, &StaticOptions::default(), &mut |_| {}).unwrap();
+        let mut w = Work::new(&beam);
+        let mut g_free = vec![0.0; beam.dofs()];
+        gather_free(&beam, beam.gravity_force(), &mut g_free);
+        let tol = StaticOptions::default().tolerance * norm(&g_free);
+        w.q_try.copy_from_slice(&sol.q);
+        residual(&beam, &mut w, &sol.slip, &g_free, 1.0, true).unwrap();
+        // The solve ends once Newton's correction is below the tolerance times the motion;
+        // full Newton steps from there take the residual down to its round-off.
+        for _ in 0..3 {
+            assert!(w.solver.factorize(&w.k));
+            w.dq.copy_from_slice(&w.r);
+            w.solver.solve(&mut w.dq);
+            add_free(&beam, &mut w.q_try, -1.0, &w.dq);
+            residual(&beam, &mut w, &sol.slip, &g_free, 1.0, true).unwrap();
+        }
+        assert!(within_measured_round_off(&beam, &mut w, &sol.slip, tol).unwrap());
+        // The transverse position of the middle node.
+        let g = (beam.spec().elements / 2) * beam.node_coords() + 1;
+        assert!(beam.free_index(g).is_some());
+        w.q_try[g] += 1e-12 * beam.length();
+        residual(&beam, &mut w, &sol.slip, &g_free, 1.0, true).unwrap();
+        assert!(!converged(&beam, &mut w, tol));
+        assert!(!within_measured_round_off(&beam, &mut w, &sol.slip, tol).unwrap());
     }
 }
