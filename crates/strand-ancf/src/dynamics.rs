@@ -440,6 +440,30 @@ impl Ledger {
         self.non_potential += non_potential_work(old, new);
     }
 
+    /// Energy given to the strand so far as of energies `en` (J): the initial state's,
+    /// gravity's and the supports' work and the law's non-potential work (each in absolute
+    /// value, a bound).
+    fn supplied(&self, en: &Energies) -> f64 {
+        self.e0.abs() + en.gravity.abs() + en.supports.abs() + en.non_potential.abs()
+    }
+
+    /// Fails where the balance error exceeds all the energy the strand was given so far,
+    /// `supplied` (J), above the round-off floor too: a strand at rest is moved by round-off
+    /// alone, and its balance error is then of the size of all it was given. `t` (s) is the
+    /// time of the step, `h` (s) the step and `stable` (s) the estimated stable step.
+    fn check_stable(&self, supplied: f64, t: f64, h: f64, stable: f64) -> Result<(), DynamicError> {
+        if self.balance_error > supplied + self.floor() {
+            return Err(DynamicError::Diverged {
+                t,
+                error: self.balance_error,
+                supplied,
+                step: h,
+                stable,
+            });
+        }
+        Ok(())
+    }
+
     #[allow(clippy::too_many_arguments)]
     fn energies(
         &mut self,
@@ -552,6 +576,33 @@ fn steps_for(duration: f64, h: f64) -> (usize, f64) {
     (n, duration / n as f64)
 }
 
+/// Half a Verlet kick of the free velocities `vf` by the free accelerations `af` over the
+/// step `h` (s): v += h/2 a.
+fn half_kick(vf: &mut [f64], af: &[f64], h: f64) {
+    for (v, a) in vf.iter_mut().zip(af) {
+        *v += 0.5 * h * a;
+    }
+}
+
+/// Fails where a free velocity of the step `step` at time `t` (s) is not finite.
+fn finite_velocity(vf: &[f64], t: f64, step: usize) -> Result<(), DynamicError> {
+    if !vf.iter().all(|x| x.is_finite()) {
+        return Err(DynamicError::Beam {
+            t,
+            step,
+            source: BeamError::NonFinite {
+                element: 0,
+                x: f64::NAN,
+                quantity: "velocity",
+            },
+        });
+    }
+    Ok(())
+}
+
+/// The explicit scheme's run: half kick, drift (and the supports' motion), the internal force
+/// at the new coordinates, half kick; then the step is committed (slip state, ledger, support
+/// work) and its energy balance checked against all the strand was given.
 fn verlet(
     beam: &Beam,
     opts: &DynamicOptions,
@@ -612,49 +663,22 @@ fn verlet(
     for step in 1..=n_steps {
         let t = step as f64 * h;
         drive.kick(beam, t - h, &mut vf, &mass, &mut mv);
-        for i in 0..nf {
-            vf[i] += 0.5 * h * af[i];
-        }
+        half_kick(&mut vf, &af, h);
         add_free(beam, &mut q, h, &vf);
         beam.move_supports(&mut q, t);
         let ev = beam
             .internal(&q, &slip, &mut trial, &mut force, None, Some(&mut pts_new))
             .map_err(fail(t, step))?;
         accel(&force, &mut af);
-        for i in 0..nf {
-            vf[i] += 0.5 * h * af[i];
-        }
-        if !vf.iter().all(|x| x.is_finite()) {
-            return Err(DynamicError::Beam {
-                t,
-                step,
-                source: BeamError::NonFinite {
-                    element: 0,
-                    x: f64::NAN,
-                    quantity: "velocity",
-                },
-            });
-        }
+        half_kick(&mut vf, &af, h);
+        finite_velocity(&vf, t, step)?;
         slip.copy_from_slice(&trial);
         ledger.dissipate(ev.slip_work, &pts, &pts_new);
         drive.end_step(beam, &q, &vf, &force);
         std::mem::swap(&mut pts, &mut pts_new);
         en = ledger.energies(beam, t, &q, &vf, &drive, &mut mv, ev.energy);
-        // Energy given to the strand so far: the initial state's, gravity's and the supports'
-        // work and the law's non-potential work (each in absolute value, a bound).
-        supplied = supplied
-            .max(ledger.e0.abs() + en.gravity.abs() + en.supports.abs() + en.non_potential.abs());
-        // Above the round-off floor too: a strand at rest is moved by round-off alone, and its
-        // balance error is then of the size of all it was given.
-        if ledger.balance_error > supplied + ledger.floor() {
-            return Err(DynamicError::Diverged {
-                t,
-                error: ledger.balance_error,
-                supplied,
-                step: h,
-                stable,
-            });
-        }
+        supplied = supplied.max(ledger.supplied(&en));
+        ledger.check_stable(supplied, t, h, stable)?;
         if output.due(t, step == n_steps) {
             scatter_velocity(beam, &vf, &drive, &mut v);
             observer(Frame {

@@ -36,6 +36,11 @@ use strand_fine::interlayer::LinkKind;
 use strand_fine::{BendingPoint, BendingTest, ContactOptions, ContactState, FineModel, ModelState};
 use strand_scene::Scene;
 
+#[path = "../tests/common/pitch_law.rs"]
+mod pitch_law;
+
+use pitch_law::{PitchLaw, pitch_stations};
+
 /// Phase stations of the law's pitch average.
 const STATIONS: usize = 48;
 
@@ -172,14 +177,7 @@ struct Record {
 /// The law followed along a curvature path at `STATIONS` stations of one pitch with its
 /// committed slip state, reporting per layer the wires' friction moment (the moment beyond
 /// K_min kappa, N m) and the fraction of slipping wire-stations.
-struct LawLayers {
-    law: SectionLaw,
-    stations: Vec<strand_core::Station>,
-    slip: Vec<Vec<f64>>,
-    trial: Vec<f64>,
-    /// Per layer: the wires' projected axial stiffness k = eta E_w A_w (N) and lay radius (m).
-    k_radius: Vec<(f64, f64)>,
-}
+struct LawLayers(PitchLaw);
 
 impl LawLayers {
     fn new(strand: &Strand, scene: &Scene, pressure: SlipPressure, eps: f64) -> Self {
@@ -187,29 +185,17 @@ impl LawLayers {
             slip_pressure: pressure,
             ..scene.section
         };
-        let law = SectionLaw::with_options(strand, scene.law, &options);
-        let pitch = strand.layers()[0].pitch;
-        let stations: Vec<_> = (0..STATIONS)
-            .map(|i| law.station(pitch * (i as f64 + 0.5) / STATIONS as f64))
-            .collect();
-        // K_stick of a layer is n k R^2 / 2 over the station's n wires of the layer.
-        let k_radius = strand
-            .layers()
-            .iter()
-            .enumerate()
-            .map(|(j, h)| {
-                let n = stations[0].wires.iter().filter(|w| w.layer == j).count() as f64;
-                (
-                    2.0 * law.layer_stick_stiffness(j) / (n * h.radius * h.radius),
-                    h.radius,
-                )
-            })
-            .collect();
+        let pitch_law = PitchLaw::new(
+            SectionLaw::with_options(strand, scene.law, &options),
+            strand,
+            STATIONS,
+        );
+        let law = &pitch_law.law;
         // Per layer, the wires' critical curvature over the stations (straight strand at the
         // test's strain): a wire reverses its slip after twice its own on unloading.
         let mut critical = vec![(f64::INFINITY, 0.0f64); strand.layers().len()];
         let zero = vec![0.0; law.state_len()];
-        for st in &stations {
+        for st in &pitch_law.stations {
             for w in law.planar_wires(st, eps, 1e-9, &zero) {
                 if let Some(c) = w.critical_curvature {
                     let e = &mut critical[w.layer - 1];
@@ -225,14 +211,7 @@ impl LawLayers {
                 .map(|j| law.layer_stick_stiffness(j))
                 .collect::<Vec<_>>()
         );
-        let len = law.state_len();
-        Self {
-            law,
-            stations,
-            slip: vec![vec![0.0; len]; STATIONS],
-            trial: vec![0.0; len],
-            k_radius,
-        }
+        Self(pitch_law)
     }
 
     /// Moves the law to `kappa` at strain `eps` and commits; returns its moment, the wires'
@@ -241,33 +220,26 @@ impl LawLayers {
     /// slip strain and l_i = -R sin(phi_i) the lever; that K_min kappa plus it is the law's
     /// moment is checked (panics beyond 1e-9 relative).
     fn step(&mut self, eps: f64, kappa: f64) -> (f64, Vec<f64>, Vec<f64>) {
-        let layers = self.k_radius.len();
+        let layers = self.0.layers();
         let (mut moment, mut friction, mut slipping) = (0.0, vec![0.0; layers], vec![0.0; layers]);
         let mut counts = vec![0.0; layers];
-        for (st, slip) in self.stations.iter().zip(&mut self.slip) {
-            let r = self.law.planar(st, eps, kappa, slip, &mut self.trial);
-            slip.copy_from_slice(&self.trial);
-            let mut parts = self.law.planar_linear(eps, kappa).moment;
-            for (i, w) in st.wires.iter().enumerate() {
-                let (k, radius) = self.k_radius[w.layer];
-                let lever = -radius * w.phase.sin();
-                let m = k * (lever * kappa - slip[i]) * lever;
-                friction[w.layer] += m;
-                parts += m;
-                counts[w.layer] += 1.0;
-            }
-            for w in self.law.planar_wires(st, eps, kappa, slip) {
-                if w.state == WireState::Slip {
-                    slipping[w.layer - 1] += 1.0;
+        self.0.step(
+            eps,
+            kappa,
+            (1e-9, 1e-12),
+            |layer, m| {
+                friction[layer] += m;
+                counts[layer] += 1.0;
+            },
+            |law, st, slip, m| {
+                for w in law.planar_wires(st, eps, kappa, slip) {
+                    if w.state == WireState::Slip {
+                        slipping[w.layer - 1] += 1.0;
+                    }
                 }
-            }
-            assert!(
-                (parts - r.moment).abs() <= 1e-9 * r.moment.abs().max(1e-12),
-                "per-wire forces {parts} against the law's moment {}",
-                r.moment
-            );
-            moment += r.moment;
-        }
+                moment += m;
+            },
+        );
         let n = STATIONS as f64;
         for j in 0..layers {
             friction[j] /= n;
@@ -507,7 +479,7 @@ fn contact_rows(
 /// a pitch, at the strain of the fine test's tension and its curvature, bent from straight.
 fn law_friction(scene: &Scene, strand: &Strand, eps: f64, p: &strand_fine::BendingPoint) {
     let law = SectionLaw::with_options(strand, scene.law, &scene.section);
-    let pitch = strand.layers()[0].pitch;
+    let stations = pitch_stations(&law, strand, STATIONS);
     let eps_fine = eps * p.tension / (eps * strand.axial_stiffness());
     for (label, e) in [("nominal tension", eps), ("fine's tension", eps_fine)] {
         let mut per_layer = vec![0.0; strand.layers().len()];
@@ -515,10 +487,9 @@ fn law_friction(scene: &Scene, strand: &Strand, eps: f64, p: &strand_fine::Bendi
         let slip = vec![0.0; law.state_len()];
         let mut trial = slip.clone();
         let mut m = 0.0;
-        for i in 0..STATIONS {
-            let st = law.station(pitch * (i as f64 + 0.5) / STATIONS as f64);
-            m += law.planar(&st, e, p.curvature, &slip, &mut trial).moment;
-            for w in law.planar_wires(&st, e, p.curvature, &slip) {
+        for st in &stations {
+            m += law.planar(st, e, p.curvature, &slip, &mut trial).moment;
+            for w in law.planar_wires(st, e, p.curvature, &slip) {
                 per_layer[w.layer - 1] += w.m_slip;
                 if w.state == strand_core::WireState::Slip {
                     slipping[w.layer - 1] += 1;

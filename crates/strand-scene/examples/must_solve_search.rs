@@ -1,19 +1,22 @@
-//! A search for static scenes that must solve (`tests/runner_property.rs`, `must_solve`) and
-//! do not: a held strand (clamped at one end, pinned at the other) of the equivalent model
-//! with the `continuous` law, near the case the property test once failed on (a 4.24 m
-//! strand, a core and 4 wires at 32 deg, friction 0.997, 10 elements: "no equilibrium found
-//! beyond load fraction 0.83"). Gravity and point forces in random directions are scaled so
-//! that the linear cantilever estimate of the property test bends the strand by 2 % to 10 % of
-//! its length (the top of its must-solve range). Every failure is printed and written as a
-//! scene file to the temporary directory.
+//! A search for static scenes that must solve (`must_solve` of `tests/common/must_solve.rs`,
+//! the predicate `tests/runner_property.rs` asserts) and do not: a held strand (clamped at one
+//! end, pinned at the other) of the equivalent model with the `continuous` law, near the case
+//! the property test once failed on (a 4.24 m strand, a core and 4 wires at 32 deg, friction
+//! 0.997, 10 elements: "no equilibrium found beyond load fraction 0.83"). Gravity and point
+//! forces in random directions are scaled so that the linear cantilever estimate of the
+//! property test bends the strand by 2 % to 10 % of its length (the top of its must-solve
+//! range). Every failure is printed and written as a scene file to the temporary directory.
 //!
 //! ```text
 //! cargo build --release -p strand-scene --example must_solve_search
 //! nice target/release/examples/must_solve_search SEED CASES
 //! ```
 
+#[path = "../tests/common/must_solve.rs"]
+mod must_solve;
+
+use must_solve::{cantilever_deflection, must_solve, wire_fit};
 use serde_json::{Value, json};
-use strand_core::BaseStiffness;
 use strand_scene::{RunOptions, Scene, run_scene};
 
 /// xorshift64: reproducible draws from a seed without a dependency.
@@ -37,18 +40,6 @@ impl Draws {
         let r = (1.0 - z * z).sqrt();
         [r * phi.cos(), r * phi.sin(), z]
     }
-}
-
-/// The property test's largest wire diameter over the core's at which the wires fit.
-fn wire_fit(wires: u32, lay_deg: f64) -> f64 {
-    let c = lay_deg.to_radians().cos();
-    let s = if wires <= 2 {
-        1.0
-    } else {
-        (std::f64::consts::PI / wires as f64).sin()
-    };
-    let sc = (s * c).min(0.95);
-    sc / (1.0 - sc)
 }
 
 /// A random scene of the family (loads not yet scaled).
@@ -109,25 +100,6 @@ fn draw(d: &mut Draws) -> Value {
     })
 }
 
-/// The property test's cantilever estimate of the deflection (m).
-fn deflection(scene: &Scene) -> f64 {
-    let strand = &scene.strand;
-    let ei = [
-        BaseStiffness::Costello,
-        BaseStiffness::Foti,
-        BaseStiffness::Papailiou,
-        BaseStiffness::Paper,
-    ]
-    .map(|b| strand.min_bending_stiffness(b))
-    .into_iter()
-    .fold(f64::INFINITY, f64::min);
-    let norm = |v: &[f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let q = strand.mass_per_length() * norm(&scene.gravity);
-    let p: f64 = scene.point_forces.iter().map(|f| norm(&f.force)).sum();
-    let l = strand.length();
-    q * l.powi(4) / (8.0 * ei) + p * l.powi(3) / (3.0 * ei)
-}
-
 /// `v`'s loads times `k`.
 fn scale_loads(v: &mut Value, k: f64) {
     let times = |x: &Value| json!(x.as_f64().unwrap_or(0.0) * k);
@@ -162,7 +134,7 @@ fn main() {
             continue;
         };
         let length = scene.strand.length();
-        let w = deflection(&scene);
+        let w = cantilever_deflection(&scene);
         if length < 10.0 * scene.strand.outer_diameter() || w.is_nan() || w <= 0.0 {
             continue;
         }
@@ -170,8 +142,7 @@ fn main() {
         let Ok(scene) = Scene::parse(&v.to_string()) else {
             continue;
         };
-        let w = deflection(&scene);
-        if w.is_nan() || w > 0.1 * length {
+        if must_solve(&scene, "equivalent").is_err() {
             continue;
         }
         must += 1;

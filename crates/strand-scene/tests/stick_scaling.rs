@@ -5,6 +5,10 @@
 //! against the law's own two stick stiffnesses: `bonded` (per-interface factor f_j) along
 //! kappa against `plane_section` along f_j kappa, per layer, for random paths with reversals.
 
+#[path = "common/pitch_law.rs"]
+mod pitch_law;
+
+use pitch_law::PitchLaw;
 use proptest::prelude::*;
 use strand_core::{SectionLaw, SectionOptions, StickStiffness, Strand};
 use strand_scene::Scene;
@@ -36,45 +40,18 @@ const STATIONS: usize = 12;
 /// along `path` (N m), the law's slip state committed at each point; asserts that K_min kappa
 /// plus it is the law's moment.
 fn layer_friction(law: &SectionLaw, strand: &Strand, eps: f64, path: &[f64]) -> Vec<Vec<f64>> {
-    let pitch = strand.layers()[0].pitch;
-    let stations: Vec<_> = (0..STATIONS)
-        .map(|i| law.station(pitch * (i as f64 + 0.5) / STATIONS as f64))
-        .collect();
-    let layers = strand.layers().len();
-    let k_radius: Vec<(f64, f64)> = strand
-        .layers()
-        .iter()
-        .enumerate()
-        .map(|(j, h)| {
-            let n = stations[0].wires.iter().filter(|w| w.layer == j).count() as f64;
-            (
-                2.0 * law.layer_stick_stiffness(j) / (n * h.radius * h.radius),
-                h.radius,
-            )
-        })
-        .collect();
-    let mut slip = vec![vec![0.0; law.state_len()]; STATIONS];
-    let mut trial = vec![0.0; law.state_len()];
+    let mut pitch_law = PitchLaw::new(law.clone(), strand, STATIONS);
+    let layers = pitch_law.layers();
     path.iter()
         .map(|&kappa| {
             let mut friction = vec![0.0; layers];
-            for (st, s) in stations.iter().zip(&mut slip) {
-                let r = law.planar(st, eps, kappa, s, &mut trial);
-                s.copy_from_slice(&trial);
-                let mut sum = law.planar_linear(eps, kappa).moment;
-                for (i, w) in st.wires.iter().enumerate() {
-                    let (k, radius) = k_radius[w.layer];
-                    let lever = -radius * w.phase.sin();
-                    let m = k * (lever * kappa - s[i]) * lever;
-                    friction[w.layer] += m / STATIONS as f64;
-                    sum += m;
-                }
-                assert!(
-                    (sum - r.moment).abs() <= 1e-10 * r.moment.abs().max(1e-6),
-                    "per-wire forces {sum} against the law's moment {}",
-                    r.moment
-                );
-            }
+            pitch_law.step(
+                eps,
+                kappa,
+                (1e-10, 1e-6),
+                |layer, m| friction[layer] += m / STATIONS as f64,
+                |_, _, _, _| {},
+            );
             friction
         })
         .collect()

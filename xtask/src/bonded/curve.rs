@@ -29,7 +29,7 @@ use strand_core::{
 use strand_fine::{BendingTest, ContactOptions, SpringScale};
 
 use super::Limit;
-use crate::validate::report::{Bound, Row};
+use crate::validate::report::Row;
 
 /// Tensions of the two curves (N): strand strains 2.2e-3 and 8.8e-3 on Table 1.
 pub const TENSIONS: [f64; 2] = [10.0, 40.0];
@@ -288,18 +288,7 @@ pub fn run(strand: &Strand, tension: f64) -> anyhow::Result<Curve> {
 /// The criteria's rows of one curve.
 pub fn judge(c: &Curve, law: &Limit, mesh: &Limit) -> Vec<Row> {
     let check = format!("curve-T{}", c.tension);
-    let row = |metric: &str, value: f64, limit: &Limit| {
-        let mut r = Row::measured(
-            "table1",
-            &check,
-            metric,
-            value,
-            "",
-            Bound::AtMost(limit.value),
-        );
-        r.why = limit.why.clone();
-        r
-    };
+    let row = |metric: &str, value: f64, limit: &Limit| limit.row("table1", &check, metric, value);
     vec![
         row("max mesh error of M_law/M_fine at 96", c.mesh_error(), mesh),
         row(

@@ -18,7 +18,7 @@
 //! report is `target/bonded/report.{md,json}` and the table on stdout.
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, bail};
@@ -85,6 +85,15 @@ struct Limits {
 struct Limit {
     value: f64,
     why: String,
+}
+
+impl Limit {
+    /// The row judging `value` against this upper limit, with its reason.
+    fn row(&self, strand: &str, check: &str, metric: &str, value: f64) -> Row {
+        let mut r = Row::measured(strand, check, metric, value, "", Bound::AtMost(self.value));
+        r.why = self.why.clone();
+        r
+    }
 }
 
 /// The bending test's settings shared by every run of one strand.
@@ -490,32 +499,19 @@ pub fn run(args: &BondedArgs) -> anyhow::Result<Report> {
             }
         }
     }
-    let report = Report::new(
-        Provenance::detect(&root),
-        args.quick,
-        t0.elapsed().as_secs_f64(),
+    let (report, out) = write_report(
+        args,
+        t0,
         rows,
-    )
-    .titled(
         "Bonded stiffness study",
-        "strand",
         "validation/bonded/criteria.json",
-    );
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| root.join("target").join("bonded"));
-    report.write(&out)?;
+        "bonded",
+    )?;
     let mut detail = details(&measured);
     for c in &curves {
         detail += &curve::details(c);
     }
-    std::fs::write(out.join("study.md"), &detail)
-        .with_context(|| format!("writing {}", out.join("study.md").display()))?;
-    std::fs::write(
-        out.join("study.json"),
-        serde_json::to_string_pretty(&measured)? + "\n",
-    )?;
+    write_study(&out, &detail, &measured)?;
     std::fs::write(
         out.join("curves.json"),
         serde_json::to_string_pretty(&curves)? + "\n",
@@ -539,34 +535,20 @@ fn run_multilayer(args: &BondedArgs) -> anyhow::Result<Report> {
         );
     }
     let t0 = Instant::now();
-    let root = repo_root();
     let limits = multilayer::limits()?;
     let (measured, failed) = multilayer::run(args.quick, args.variant.as_deref());
     let mut rows = multilayer::judge(&measured, &limits);
     rows.extend(failed);
-    let report = Report::new(
-        Provenance::detect(&root),
-        args.quick,
-        t0.elapsed().as_secs_f64(),
+    let (report, out) = write_report(
+        args,
+        t0,
         rows,
-    )
-    .titled(
         "Bonded stiffness study, 1+6+12 strand",
-        "strand",
         "validation/bonded/multilayer-criteria.json",
-    );
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| root.join("target").join("bonded-multilayer"));
-    report.write(&out)?;
-    let detail = multilayer::details(&measured);
-    std::fs::write(out.join("study.md"), &detail)
-        .with_context(|| format!("writing {}", out.join("study.md").display()))?;
-    std::fs::write(
-        out.join("study.json"),
-        serde_json::to_string_pretty(&measured)? + "\n",
+        "bonded-multilayer",
     )?;
+    let detail = multilayer::details(&measured);
+    write_study(&out, &detail, &measured)?;
     print!("{detail}");
     if args.update_docs {
         crate::book::pages::update(
@@ -576,6 +558,43 @@ fn run_multilayer(args: &BondedArgs) -> anyhow::Result<Report> {
         )?;
     }
     Ok(report)
+}
+
+/// The report of `rows`, judged against the criteria file `criteria`, titled `title` and timed
+/// from `t0`, written into `--out` or `target/<default_out>`; returns it and the folder.
+fn write_report(
+    args: &BondedArgs,
+    t0: Instant,
+    rows: Vec<Row>,
+    title: &str,
+    criteria: &str,
+    default_out: &str,
+) -> anyhow::Result<(Report, PathBuf)> {
+    let root = repo_root();
+    let report = Report::new(
+        Provenance::detect(&root),
+        args.quick,
+        t0.elapsed().as_secs_f64(),
+        rows,
+    )
+    .titled(title, "strand", criteria);
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| root.join("target").join(default_out));
+    report.write(&out)?;
+    Ok((report, out))
+}
+
+/// The study's table `detail` as `study.md` and its measured values as `study.json` in `out`.
+fn write_study(out: &Path, detail: &str, measured: &impl Serialize) -> anyhow::Result<()> {
+    std::fs::write(out.join("study.md"), detail)
+        .with_context(|| format!("writing {}", out.join("study.md").display()))?;
+    std::fs::write(
+        out.join("study.json"),
+        serde_json::to_string_pretty(measured)? + "\n",
+    )?;
+    Ok(())
 }
 
 /// The manual's `bonded` block: the report's provenance, its judged rows and the curves' tables.
@@ -591,33 +610,20 @@ fn curve_docs(report: &Report, curves: &[curve::Curve]) -> String {
 /// The criteria's rows.
 fn judge(m: &[Measured], limits: &Limits) -> Vec<Row> {
     let mut rows = Vec::new();
-    let row = |m: &Measured, check: &str, metric: &str, value: f64, limit: &Limit| {
-        let mut r = Row::measured(
-            &m.strand,
-            check,
-            metric,
-            value,
-            "",
-            Bound::AtMost(limit.value),
-        );
-        r.why = limit.why.clone();
-        r
-    };
     for x in m {
+        let (strand, variant) = (x.strand.as_str(), x.variant.as_str());
         if x.asymptotic {
-            rows.push(row(
-                x,
-                &x.variant,
-                "discretisation",
-                x.limit_error,
-                &limits.discretisation,
-            ));
+            rows.push(
+                limits
+                    .discretisation
+                    .row(strand, variant, "discretisation", x.limit_error),
+            );
         } else {
             let k96 = x.fine[x.fine.len() - 1];
             rows.push(
                 Row::measured(
-                    &x.strand,
-                    &x.variant,
+                    strand,
+                    variant,
                     "K_96 / K_max",
                     k96 / x.k_max,
                     "",
@@ -627,30 +633,27 @@ fn judge(m: &[Measured], limits: &Limits) -> Vec<Row> {
             );
         }
         if x.rod.is_finite() {
-            rows.push(row(
-                x,
-                &x.variant,
+            rows.push(limits.rod_model.row(
+                strand,
+                variant,
                 "|K_fine/K_rod - 1|",
                 (x.limit / x.rod - 1.0).abs(),
-                &limits.rod_model,
             ));
         }
         if x.variant == "removed" {
-            rows.push(row(
-                x,
-                &x.variant,
+            rows.push(limits.k_max.row(
+                strand,
+                variant,
                 "|K_fine/K_max - 1|",
                 (x.limit / x.k_max - 1.0).abs(),
-                &limits.k_max,
             ));
         }
         if x.variant == "physical" {
-            rows.push(row(
-                x,
+            rows.push(limits.physical.row(
+                strand,
                 "physical",
                 "|K_rod,rigid/K_fine - 1|",
                 (x.rod_rigid / x.limit - 1.0).abs(),
-                &limits.physical,
             ));
         }
     }

@@ -364,9 +364,7 @@ pub fn limits() -> anyhow::Result<Limits> {
 /// The criteria's rows.
 pub fn judge(m: &[Measured], limits: &Limits) -> Vec<Row> {
     let row = |check: &str, metric: &str, value: f64, limit: &Limit| {
-        let mut r = Row::measured("1x19", check, metric, value, "", Bound::AtMost(limit.value));
-        r.why = limit.why.clone();
-        r
+        limit.row("1x19", check, metric, value)
     };
     let mut rows = Vec::new();
     for x in m.iter().filter(|x| x.judged) {
