@@ -337,6 +337,8 @@ impl Integrator {
         let damp = (-self.damping_rate * dt).exp();
         // The kick-drift sweep's halves: equal segment counts.
         let (cut_wire, cut) = sweep::halfway(model.wires.iter().map(|w| w.chain.len()));
+        // The loads sweep's halves: about equal cost.
+        let load_cut = crate::load_span::plan(&model.wires);
         for i in 0..=steps {
             // Commit (the previous step's), kick (the previous step's second half and this
             // step's first), then drift and frames; after the last step, commit and the
@@ -379,7 +381,13 @@ impl Integrator {
                 break;
             }
             self.load_factor = load_factor(self.time + dt);
-            model.loads_at_frames(state, self.load_factor, &self.frames, &mut self.loads);
+            model.loads_at_frames_cut(
+                state,
+                self.load_factor,
+                &self.frames,
+                &mut self.loads,
+                load_cut,
+            );
             self.time += dt;
             self.steps += 1;
         }
