@@ -302,10 +302,10 @@ impl Integrator {
     /// half kick (and damping), the first half kick and drift of the next and the segments'
     /// frames at the new poses are one sweep, the loads the other. Each sweep is cut in two
     /// halves, the kick-drift sweep at equal segment counts (a wire cut in two if need be),
-    /// the loads' between whole wires of about equal cost; the halves run in parallel (one
-    /// `rayon::join`) when rayon's pool has more than one thread, else one after the other in
-    /// the calling thread (`sweep` module), and in parallel all `steps` run on one of the
-    /// pool's threads. Every segment's and contact's arithmetic is the same either way and
+    /// the loads' where half their estimated cost falls (`load_span`); the halves run in
+    /// parallel (one `rayon::join`) when rayon's pool has more than one thread, else one
+    /// after the other in the calling thread (`sweep` module), and in parallel all `steps`
+    /// run on one of the pool's threads. Every segment's and contact's arithmetic is the same either way and
     /// the cuts do not depend on the thread count: the numbers are the same bit for bit.
     pub fn advance(
         &mut self,

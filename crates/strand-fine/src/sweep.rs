@@ -12,7 +12,8 @@
 //! A sweep whose work is the same for every segment (the kick-drift sweep of the time
 //! stepping) is cut in two halves of equal segment counts ([`halfway`]), one wire cut in two
 //! if need be, and the halves run by one `rayon::join` ([`both`]): seven wires over two
-//! threads as whole wires would give one thread four wires and the other three.
+//! threads as whole wires would give one thread four wires and the other three. The loads
+//! sweep is cut where half its estimated cost falls (`load_span`).
 
 /// True when sweeps over wires should run in parallel: rayon's pool, as seen from the
 /// calling thread, has more than one thread (`RAYON_NUM_THREADS`).
