@@ -43,6 +43,7 @@ pub mod dynamics;
 pub mod interlayer;
 pub mod joint;
 pub mod load_continuation;
+mod load_span;
 pub mod model;
 pub mod motion;
 pub mod penalty;
