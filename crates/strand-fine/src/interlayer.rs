@@ -33,9 +33,9 @@
 //! ([`crate::penalty`], from the allowed relief of the wire strain; or, with
 //! [`crate::NormalPenalty::Penetration`], the outer wire's line pressure
 //! `T_w sin^2(alpha) / R_w` at the allowed penetration) over the wire length the link stands
-//! for, `l_eff`; `l_eff` is the segment length for line contacts and the distance between
-//! crossings along the wire, `1 / (m_b |1/P_a +- 1/P_b| / cos(alpha_a))`, where that is
-//! shorter (see [`crate::ContactOptions::stiffness_per_length`]).
+//! for, `l_eff` ([`link_length`]): the segment length for line contacts and, for a crossing,
+//! the distance between crossings along the wire, `1 / (m_b |1/P_a +- 1/P_b| cos(alpha_a))`,
+//! at any segment length (see [`crate::ContactOptions::stiffness_per_length`]).
 
 use nalgebra::Vector3;
 use rayon::prelude::*;
@@ -102,6 +102,21 @@ pub struct WireLink {
     pub length: f64,
     /// Penalty and friction.
     pub law: ContactLaw,
+}
+
+/// Wire length (m) a link of a segment `segment` long stands for, given the distance
+/// `spacing` (m) between the crossings of its wire with the partner layer along the wire
+/// (infinite for a line contact or a neighbour): a crossing is held by one link
+/// ([`duplicates`]), so it stands for the whole `spacing` whatever the segment's length; a
+/// line stands for its segment. Either way the stiffness per unit wire length, the law's
+/// per-length stiffness times this length summed over a wire's links and divided by the
+/// wire's length, does not depend on the mesh.
+pub fn link_length(segment: f64, spacing: f64) -> f64 {
+    if spacing.is_finite() {
+        spacing
+    } else {
+        segment
+    }
 }
 
 /// Closest approach of a link's segment and a partner segment.

@@ -324,7 +324,7 @@ impl FineModel {
             normal_per_length = k;
         }
         let friction = options.friction.unwrap_or(strand.friction());
-        let n_pts = options.points_per_segment.clamp(1, 2);
+        let n_pts = options.points_on(strand);
         let (rc, rw) = (strand.core().radius(), wire.radius());
         let core_share = options.contact_radius.unwrap_or(rc) / (rc + rw);
         let (core_wire, helical) = self.wires.split_at_mut(1);
@@ -460,7 +460,7 @@ impl FineModel {
                 for (k, seg) in chain.segments.iter().enumerate() {
                     let la = seg.length;
                     let sag = helix_sag(outer, &chain.rest[k]);
-                    let length = |spacing: f64| la.min(spacing);
+                    let length = |spacing: f64| interlayer::link_length(la, spacing);
                     for &(p0, m, inner, kind, spacing, neighbour) in &partners {
                         let partners: Vec<usize> = if neighbour {
                             vec![p0 + (i + 1) % m]

@@ -22,7 +22,7 @@ fn run(mu: f64, tension: f64, curvatures: Vec<f64>) -> Vec<BendingPoint> {
     let contact = ContactOptions {
         stick_loss: env("STICK_LOSS", 0.05),
         penetration: env("PEN", 1e-3),
-        points_per_segment: env("PTS", 2.0) as usize,
+        points_per_segment: Some(env("PTS", 2.0) as usize),
         contact_radius: std::env::var("RHO").ok().and_then(|v| v.parse().ok()),
         reference_tension: std::env::var("TREF").ok().and_then(|v| v.parse().ok()),
         ..Default::default()
@@ -155,7 +155,7 @@ fn bonded(
         contact: ContactOptions {
             penetration: 1e-5,
             stick_loss: 5e-4,
-            points_per_segment: 1,
+            points_per_segment: Some(1),
             reference_tension: Some(wire_ea * 2.2e-3),
             ..contact
         },
@@ -285,7 +285,7 @@ fn slipping_contacts_converge_without_halving() {
         contact: ContactOptions {
             penetration: 1e-4,
             stick_loss: 5e-3,
-            points_per_segment: 1,
+            points_per_segment: Some(1),
             reference_tension: Some(wire_ea * 2.2e-3),
             ..Default::default()
         },
@@ -316,7 +316,7 @@ fn wire_forces() {
         contact: ContactOptions {
             stick_loss: env("STICK_LOSS", 0.05),
             penetration: env("PEN", 1e-3),
-            points_per_segment: env("PTS", 2.0) as usize,
+            points_per_segment: Some(env("PTS", 2.0) as usize),
             ..Default::default()
         },
         friction: env("MU", 1e3),

@@ -114,7 +114,7 @@ fn press_and_pull(pull_ratio: f64) -> (f64, ContactState, f64, f64, f64) {
         ties: Vec::new(),
     };
     let opts = ContactOptions {
-        points_per_segment: 1,
+        points_per_segment: Some(1),
         ..Default::default()
     };
     m.add_contacts(&s, &opts);

@@ -180,7 +180,7 @@ fn test(
             // stiffness (`penalty_ratio`).
             penetration: 1e-4,
             stick_loss: 5e-3,
-            points_per_segment: 1,
+            points_per_segment: Some(1),
             reference_tension: Some(wire_ea * 2.2e-3),
             ..Default::default()
         },

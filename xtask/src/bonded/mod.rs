@@ -129,7 +129,7 @@ fn stiff() -> ContactOptions {
     ContactOptions {
         penetration: 1e-5,
         stick_loss: 5e-4,
-        points_per_segment: 1,
+        points_per_segment: Some(1),
         ..Default::default()
     }
 }
@@ -237,7 +237,7 @@ fn variants(quick: bool, r_w: f64) -> Vec<Variant> {
     let moderate = |points: usize| ContactOptions {
         penetration: 1e-4,
         stick_loss: 5e-3,
-        points_per_segment: points,
+        points_per_segment: Some(points),
         ..Default::default()
     };
     v.push(Variant {

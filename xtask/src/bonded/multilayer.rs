@@ -237,7 +237,7 @@ fn bending_test(strand: &Strand, v: &Variant, spp: usize) -> BendingTest {
     let outer = strand.layers().last().expect("a helical layer");
     let tension = STRAIN * strand.axial_stiffness();
     let mut contact = ContactOptions {
-        points_per_segment: 1,
+        points_per_segment: Some(1),
         contact_radius: v.axes.then(|| strand.layers()[0].radius),
         ..Default::default()
     };

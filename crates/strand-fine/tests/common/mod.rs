@@ -59,6 +59,16 @@ pub fn secant_stiffness(test: &BendingTest, s: &Strand) -> f64 {
 /// E = 5e7 Pa, friction `friction`, `segments` a wire, clamped at its start and free at its
 /// end, g = 10 m/s^2 along -y, the default contacts.
 pub fn cantilever_1x19(friction: f64, layers: usize, segments: usize) -> FineModel {
+    cantilever_1x19_with(friction, layers, segments, &ContactOptions::default())
+}
+
+/// [`cantilever_1x19`] with the contacts `contact`.
+pub fn cantilever_1x19_with(
+    friction: f64,
+    layers: usize,
+    segments: usize,
+    contact: &ContactOptions,
+) -> FineModel {
     let mat = Material {
         youngs_modulus: 5.0e7,
         poisson_ratio: 0.3,
@@ -95,6 +105,6 @@ pub fn cantilever_1x19(friction: f64, layers: usize, segments: usize) -> FineMod
         Support::Free,
     );
     m.gravity = Vector3::new(0.0, -10.0, 0.0);
-    m.add_contacts(&strand, &ContactOptions::default());
+    m.add_contacts(&strand, contact);
     m
 }
