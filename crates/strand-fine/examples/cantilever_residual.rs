@@ -12,7 +12,8 @@
 //! `SAVE=PATH` writes the state where the motion stopped to `PATH-end.state` (and at the
 //! step counts in `SAVE_AT`, comma-separated, to `PATH-N.state`); `LOAD=FILE` starts Newton
 //! from a saved state instead of running the motion (a 48-segment motion is minutes of CPU,
-//! Newton from it seconds).
+//! Newton from it seconds). `CENTRELINE=DIR` writes the core's centreline after Newton
+//! without penalty stages to `DIR/centerline.csv` (s, x, y, z at the joints, as `strand run`).
 
 mod common;
 #[path = "../tests/common/mod.rs"]
@@ -212,6 +213,15 @@ fn main() {
             ..StaticOptions::default()
         };
         let res = solve_static(&m, &mut st, &polish);
+        if let (Ok(path), true) = (std::env::var("CENTRELINE"), stages == 0 && res.is_ok()) {
+            let c = m.core_centreline(&st);
+            let mut out = String::from("s,x,y,z\n");
+            for (k, p) in c.iter().enumerate() {
+                let s = 0.08 * k as f64 / (c.len() - 1) as f64;
+                out += &format!("{s:?},{:?},{:?},{:?}\n", p.x, p.y, p.z);
+            }
+            std::fs::write(format!("{path}/centerline.csv"), out).unwrap();
+        }
         let t2 = *m.core_centreline(&st).last().unwrap();
         println!(
             "Newton, {stages} penalty stages: {res:?}; tip moved {:.3e} m to ({:.6e}, {:.6e}, \
