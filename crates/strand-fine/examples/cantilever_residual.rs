@@ -6,8 +6,14 @@
 //! allowance, the worst segment (wire, layer, segment, force or torque) and how many contacts
 //! changed state (open / stick / slip) since the last print; at the end the worst segments
 //! with the contacts acting on them, and Newton from the stalled state with 0 and
-//! `STAGES` (2) penalty stages:
+//! `STAGES` (2) penalty stages, `ITER` (40) iterations (`EXTEND=1`: more blocks of `ITER`
+//! while each halves the residual, `StaticOptions::extend_while_falling`):
 //! `cargo run --release -p strand-fine --example cantilever_residual`.
+//! `SAVE=PATH` writes the state where the motion stopped to `PATH-end.state` (and at the
+//! step counts in `SAVE_AT`, comma-separated, to `PATH-N.state`); `LOAD=FILE` starts Newton
+//! from a saved state instead of running the motion (a 48-segment motion is minutes of CPU,
+//! Newton from it seconds). `CENTRELINE=DIR` writes the core's centreline after Newton
+//! without penalty stages to `DIR/centerline.csv` (s, x, y, z at the joints, as `strand run`).
 
 mod common;
 #[path = "../tests/common/mod.rs"]
@@ -88,10 +94,20 @@ fn main() {
         ..SettleOptions::default()
     };
     let mut state = m.rest_state();
+    let save = std::env::var("SAVE").ok();
+    let save_at: Vec<u64> = std::env::var("SAVE_AT").map_or(Vec::new(), |v| {
+        v.split(',').map(|x| x.parse().unwrap()).collect()
+    });
+    let load = std::env::var("LOAD").ok();
     let mut check = 0u64;
     let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
-    let r = settle(&m, &mut state, &opts, &mut |st: &ModelState, t, ratio| {
+    let mut motion = |st: &ModelState, t, ratio| {
         check += 100;
+        if let Some(p) = &save
+            && save_at.contains(&check)
+        {
+            common::save_state(st, &format!("{p}-{check}.state"));
+        }
         lo = lo.min(ratio);
         hi = hi.max(ratio);
         if check < last_step + every {
@@ -133,8 +149,17 @@ fn main() {
         prev = Some(now);
         prev_tip = tip;
         (lo, hi) = (f64::INFINITY, 0.0);
-    });
-    println!("settle: {r:?}");
+    };
+    if let Some(p) = &load {
+        common::load_state(&mut state, p);
+        println!("state from {p}");
+    } else {
+        let r = settle(&m, &mut state, &opts, &mut motion);
+        println!("settle: {r:?}");
+        if let Some(p) = &save {
+            common::save_state(&state, &format!("{p}-end.state"));
+        }
+    }
     m.compute_loads(&state, 1.0, &mut loads);
     let w = worst(&m, &loads, f_ref);
     let mut per_layer = [0.0f64; 3];
@@ -183,9 +208,20 @@ fn main() {
             min_increment: 1.0,
             potential_descent: false,
             penalty_stages: stages,
+            max_iterations: env("ITER", 40.0) as usize,
+            extend_while_falling: env("EXTEND", 0.0) != 0.0,
             ..StaticOptions::default()
         };
         let res = solve_static(&m, &mut st, &polish);
+        if let (Ok(path), true) = (std::env::var("CENTRELINE"), stages == 0 && res.is_ok()) {
+            let c = m.core_centreline(&st);
+            let mut out = String::from("s,x,y,z\n");
+            for (k, p) in c.iter().enumerate() {
+                let s = 0.08 * k as f64 / (c.len() - 1) as f64;
+                out += &format!("{s:?},{:?},{:?},{:?}\n", p.x, p.y, p.z);
+            }
+            std::fs::write(format!("{path}/centerline.csv"), out).unwrap();
+        }
         let t2 = *m.core_centreline(&st).last().unwrap();
         println!(
             "Newton, {stages} penalty stages: {res:?}; tip moved {:.3e} m to ({:.6e}, {:.6e}, \

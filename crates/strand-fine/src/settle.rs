@@ -485,7 +485,9 @@ pub struct SettledOptions {
     /// cantilever the motion stands still (tip moving 2.4e-7 m in 0.08 s) while a few
     /// segments keep vibrating against contacts that open and close (largest speed 5e-4
     /// m/s, force residual 1-2 segment weights), which the rest criterion of 1e-4 of a
-    /// segment weight never passes; Newton with the histories frozen converges from there.
+    /// segment weight never passes; Newton with the histories frozen converges from there,
+    /// given further blocks of iterations while each halves the residual
+    /// ([`StaticOptions::extend_while_falling`]: at 48 segments a wire it takes 45).
     pub polish_stalled: bool,
 }
 
@@ -695,7 +697,8 @@ pub fn solve_settled(
 
 /// The result of a motion that stopped with `error` without coming to rest: on a model with
 /// wire-to-wire links and [`SettledOptions::polish_stalled`], Newton from the state the
-/// motion stopped in; its converged state, or `error` (with `state` where the motion stopped)
+/// motion stopped in (the polish's options with [`StaticOptions::extend_while_falling`]);
+/// its converged state, or `error` (with `state` where the motion stopped)
 /// if it does not converge.
 fn polish_stalled(
     model: &FineModel,
@@ -724,7 +727,11 @@ fn polish_stalled(
         return Err(error);
     }
     let stopped = state.clone();
-    match solve_static(model, state, &options.polish) {
+    let polish = StaticOptions {
+        extend_while_falling: true,
+        ..options.polish
+    };
+    match solve_static(model, state, &polish) {
         Ok(p) => {
             let (damping_rate, ramp_time) = damping_and_ramp(model, &options.settle);
             let sc = scales(

@@ -71,3 +71,70 @@ pub fn cpu_seconds() -> f64 {
     };
     (ticks(11) + ticks(12)) / 100.0
 }
+
+/// Writes `state` to `path` as text, every number in its shortest round-trip form, so that
+/// [`load_state`] gives it back bit for bit (a stalled motion saved once, studied many times).
+pub fn save_state(state: &strand_fine::ModelState, path: &str) {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    let v = |s: &mut String, x: &Vector3<f64>| {
+        write!(s, " {:?} {:?} {:?}", x.x, x.y, x.z).unwrap();
+    };
+    writeln!(s, "{} {:?}", state.wires.len(), state.friction_work).unwrap();
+    for w in &state.wires {
+        writeln!(s, "{}", w.poses.len()).unwrap();
+        for (k, p) in w.poses.iter().enumerate() {
+            let q = p.rotation.quaternion();
+            v(&mut s, &p.position);
+            write!(s, " {:?} {:?} {:?} {:?}", q.w, q.i, q.j, q.k).unwrap();
+            v(&mut s, &w.velocities[k]);
+            v(&mut s, &w.angular_momenta[k]);
+            s.push('\n');
+        }
+    }
+    for h in &state.contacts {
+        writeln!(s, "{}", h.len()).unwrap();
+        for c in h {
+            write!(s, "{} {}", c.core_segment, u8::from(c.closed)).unwrap();
+            v(&mut s, &c.displacement);
+            v(&mut s, &c.on_wire);
+            v(&mut s, &c.on_core);
+            s.push('\n');
+        }
+    }
+    std::fs::write(path, s).unwrap();
+}
+
+/// Reads a state written by [`save_state`] into `state` (of the same model; holds free).
+pub fn load_state(state: &mut strand_fine::ModelState, path: &str) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut t = text.split_ascii_whitespace();
+    let mut f = || -> f64 { t.next().unwrap().parse().unwrap() };
+    let nw = f() as usize;
+    assert_eq!(nw, state.wires.len());
+    state.friction_work = f();
+    let v3 = |f: &mut dyn FnMut() -> f64| Vector3::new(f(), f(), f());
+    for w in &mut state.wires {
+        let n = f() as usize;
+        assert_eq!(n, w.poses.len());
+        for k in 0..n {
+            w.poses[k].position = v3(&mut f);
+            let (qw, qi, qj, qk) = (f(), f(), f(), f());
+            w.poses[k].rotation =
+                nalgebra::UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(qw, qi, qj, qk));
+            w.velocities[k] = v3(&mut f);
+            w.angular_momenta[k] = v3(&mut f);
+        }
+    }
+    for h in &mut state.contacts {
+        let n = f() as usize;
+        assert_eq!(n, h.len());
+        for c in h.iter_mut() {
+            c.core_segment = f() as usize;
+            c.closed = f() != 0.0;
+            c.displacement = v3(&mut f);
+            c.on_wire = v3(&mut f);
+            c.on_core = v3(&mut f);
+        }
+    }
+}
