@@ -134,6 +134,14 @@ pub struct BendingPoint {
     pub clamp_moment: f64,
     /// Axial tension from the clamp reaction (N).
     pub tension: f64,
+    /// The strand's axial force over the test's window (N): the resultant of the loads the
+    /// part after each cut through the core's joints puts on the part before, along the core's
+    /// tangent at the cut ([`BendingTest::axial_profile`]), weighted as the moment is. On a
+    /// strand of several layers the test holds it at the tension ([`AXIAL_TOLERANCE`]).
+    pub axial_force: f64,
+    /// The end plate's stretch, the strain of the arc it is moved along (-): T / EA_eq on a
+    /// `1+m` strand, on several layers the stretch that holds the axial force at T.
+    pub strain: f64,
     /// Newton iterations of the load step.
     pub iterations: usize,
     /// Contacts stuck, slipping and open at the end of the step.
@@ -161,6 +169,20 @@ pub enum BendingError {
     /// strand, or the segment count overflows.
     #[error("{0}")]
     Setup(String),
+    /// The end plate's stretch did not bring the axial force of a strand of several layers
+    /// to the tension ([`AXIAL_TOLERANCE`]).
+    #[error(
+        "load step at curvature {curvature:.4e} 1/m: the axial force {axial_force:.6e} N does not \
+         reach the tension {tension:.6e} N"
+    )]
+    Tension {
+        /// Imposed curvature (1/m).
+        curvature: f64,
+        /// Axial force over the window at the last correction (N).
+        axial_force: f64,
+        /// The test's tension (N).
+        tension: f64,
+    },
     /// A load step did not reach equilibrium.
     #[error("load step at curvature {curvature:.4e} 1/m: {source}")]
     Static {
@@ -174,6 +196,9 @@ pub enum BendingError {
 /// A load on a segment from outside the strand: (rest x of the segment or -1 for a clamp
 /// reaction, point of application, force, torque).
 type ExternalLoad = (f64, Vector3<f64>, Vector3<f64>, Vector3<f64>);
+
+/// The end plate's anchors of one wire: (anchor index, rest ground pose).
+type EndGrounds = Vec<(usize, Pose)>;
 
 /// Arc map of the bending test: the reference point (x, y, z) of the straight strand goes to
 /// the arc of curvature `kappa` stretched by `eps`, sections staying plane and normal.
@@ -303,6 +328,14 @@ impl BendingTest {
         strand: &Strand,
         observe: &mut dyn FnMut(&BendingPoint, &FineModel, &ModelState),
     ) -> Result<(Vec<BendingPoint>, FineModel, ModelState), BendingError> {
+        if self.pitches < MIN_PITCHES {
+            return Err(BendingError::Setup(format!(
+                "a bending test of {} pitches: at least {MIN_PITCHES}, since the moment and \
+                 curvature are taken over whole pitches at least a pitch clear of each clamp \
+                 (fewer leave an empty window)",
+                self.pitches
+            )));
+        }
         // The longest pitch: every layer spans at least `pitches` of its own.
         let pitch = strand
             .layers()
@@ -343,7 +376,9 @@ impl BendingTest {
         );
         model.scale_springs(&self.core_springs, &self.wire_springs);
         let ea = strand.axial_stiffness();
-        let eps = self.tension / ea;
+        // The end plate's stretch: T / EA_eq, corrected on several layers so that the axial
+        // force is the tension (kept from one load step to the next as the start).
+        let mut eps = self.tension / ea;
         model.add_contacts(&strand, &self.contact_options(&strand));
         let core = strand.core();
         let shares: Vec<f64> = model
@@ -375,8 +410,10 @@ impl BendingTest {
             eps: 0.0,
         };
         let window = self.window_on(&strand, pitch);
-        // One layer: the test's original measure over its box, bit for bit.
+        // One layer: the test's original measure over its box, bit for bit, and the end plate
+        // held at the strain T / EA_eq (the axial force is measured, not held).
         let one_layer = (strand.layers().len() == 1).then(|| self.one_layer_window(pitch));
+        let hold_tension = one_layer.is_none();
         let mut out = Vec::new();
         let steps = std::iter::once(0.0).chain(self.curvatures.iter().copied());
         for kappa in steps {
@@ -393,15 +430,36 @@ impl BendingTest {
                     reached + increment
                 };
                 let saved = (state.clone(), map);
-                match self.step_to(
-                    &mut model,
-                    &mut state,
-                    &mut map,
-                    target,
-                    eps,
-                    &shares,
-                    &end_grounds,
-                ) {
+                let saved_eps = eps;
+                let stepped = self
+                    .step_to(
+                        &mut model,
+                        &mut state,
+                        &mut map,
+                        target,
+                        eps,
+                        &shares,
+                        &end_grounds,
+                    )
+                    .map_err(|source| BendingError::Static {
+                        curvature: target,
+                        source,
+                    })
+                    .and_then(|it| {
+                        if !hold_tension {
+                            return Ok(it);
+                        }
+                        let held = self.hold_tension(
+                            &mut model,
+                            &mut state,
+                            &mut map,
+                            (target, &mut eps, ea),
+                            &saved.0,
+                            (&shares, &end_grounds, &window),
+                        )?;
+                        Ok(it + held)
+                    });
+                match stepped {
                     Ok(it) => {
                         iterations += it;
                         reached = target;
@@ -409,20 +467,24 @@ impl BendingTest {
                             break;
                         }
                     }
-                    Err(source) => {
+                    Err(error) => {
                         (state, map) = saved;
+                        eps = saved_eps;
                         halvings += 1;
                         if halvings > self.max_halvings {
-                            return Err(BendingError::Static {
-                                curvature: target,
-                                source,
-                            });
+                            return Err(error);
                         }
                         increment *= 0.5;
                     }
                 }
             }
-            let point = self.measure(&model, &state, kappa, iterations, (&window, one_layer));
+            let point = self.measure(
+                &model,
+                &state,
+                (kappa, eps),
+                iterations,
+                (&window, one_layer),
+            );
             observe(&point, &model, &state);
             out.push(point);
         }
@@ -448,6 +510,16 @@ impl BendingTest {
             .reduce(f64::max)
             .ok_or(BendingError::NoLayer)?;
         Ok(self.window_on(strand, pitch))
+    }
+
+    /// [`BendingTest::window`] of a test `pitches` long on `strand` (only the length in
+    /// pitches matters).
+    pub fn window_of(strand: &Strand, pitches: usize) -> Result<PitchWindow, BendingError> {
+        let test = BendingTest {
+            pitches,
+            ..BendingTest::frictionless(pitches, 4, 1.0, 1.0)
+        };
+        test.window(strand)
     }
 
     /// [`BendingTest::window`] with the longest pitch `pitch` (m).
@@ -517,6 +589,79 @@ impl BendingTest {
             let rep = solve_static(model, state, &self.statics)?;
             Ok(rep.iterations)
         }
+    }
+
+    /// Holds the strand's axial force over `window` at the tension after a converged load
+    /// step to curvature `kappa` (1/m) at the end plate's stretch `eps`: while the axial force
+    /// `N` ([`BendingTest::axial_profile`] over the window) differs from `T` by more than
+    /// [`AXIAL_TOLERANCE`] `T`, the stretch moves by `(T - N) / k` (`k` the strand's axial
+    /// stiffness EA_eq (N) at first, then the secant of the last two solves) and the step is
+    /// solved again from the contact histories committed at its start (`start`), with the last
+    /// equilibrium as the initial guess. Returns the Newton iterations; `eps` ends at the held
+    /// stretch.
+    fn hold_tension(
+        &self,
+        model: &mut FineModel,
+        state: &mut ModelState,
+        map: &mut ArcMap,
+        (kappa, eps, ea): (f64, &mut f64, f64),
+        start: &ModelState,
+        (shares, end_grounds, window): (&[f64], &[EndGrounds], &PitchWindow),
+    ) -> Result<usize, BendingError> {
+        let target = self.tension;
+        let mut iterations = 0;
+        let mut last: Option<(f64, f64)> = None;
+        for _ in 0..MAX_AXIAL_CORRECTIONS {
+            let n = window.mean(&Self::axial_profile(model, state));
+            if (n - target).abs() <= AXIAL_TOLERANCE * target {
+                return Ok(iterations);
+            }
+            let k = match last {
+                Some((e0, n0)) if *eps != e0 && (n - n0) / (*eps - e0) > 0.0 => {
+                    (n - n0) / (*eps - e0)
+                }
+                _ => ea,
+            };
+            last = Some((*eps, n));
+            *eps += (target - n) / k;
+            state.contacts.clone_from(&start.contacts);
+            state.friction_work = start.friction_work;
+            iterations += self
+                .step_to(model, state, map, kappa, *eps, shares, end_grounds)
+                .map_err(|source| BendingError::Static {
+                    curvature: kappa,
+                    source,
+                })?;
+        }
+        Err(BendingError::Tension {
+            curvature: kappa,
+            axial_force: window.mean(&Self::axial_profile(model, state)),
+            tension: target,
+        })
+    }
+
+    /// The strand's axial force (N) at every cut through a joint of the core at `state`, with
+    /// the cut's rest x (m): the loads the part after the cut puts on the part before, along
+    /// the core's tangent at the cut (the mean of its two segments' tangents), each wire cut at
+    /// its joint nearest the cut plane (as [`BendingTest::layer_moment_parts`] cuts them).
+    pub fn axial_profile(model: &FineModel, state: &ModelState) -> Vec<(f64, f64)> {
+        let core = &model.wires[0];
+        let cs = &state.wires[0].poses;
+        (0..core.chain.joints.len())
+            .map(|j| {
+                let jt = &core.chain.joints[j];
+                let x = core.chain.rest[j].point(&jt.offset_a).x;
+                let c = cs[j].point(&jt.offset_a);
+                let axis = (cs[j].tangent() + cs[j + 1].tangent()).normalize();
+                let mut force = jt.evaluate(&cs[j], &cs[j + 1]).force_a;
+                for (w, ws) in model.wires.iter().zip(&state.wires).skip(1) {
+                    let k = nearest_joint(w, &ws.poses, &c, &axis);
+                    let jw = &w.chain.joints[k];
+                    force += jw.evaluate(&ws.poses[k], &ws.poses[k + 1]).force_a;
+                }
+                (x, force.dot(&axis))
+            })
+            .collect()
     }
 
     /// Axial force of every wire at the clamp (x = 0) at `state`, from its clamp reaction, in
@@ -589,14 +734,7 @@ impl BendingTest {
             let l = jt.evaluate(&cs[j], &cs[j + 1]);
             parts[0][0] += (l.torque_a + (cs[j].position - c).cross(&l.force_a)).z;
             for (w, ws) in model.wires.iter().zip(&state.wires).skip(1) {
-                let (k, _) = w
-                    .chain
-                    .joints
-                    .iter()
-                    .enumerate()
-                    .map(|(k, jw)| (k, (ws.poses[k].point(&jw.offset_a) - c).dot(&normal).abs()))
-                    .min_by(|a, b| a.1.total_cmp(&b.1))
-                    .unwrap();
+                let k = nearest_joint(w, &ws.poses, &c, &normal);
                 let jw = &w.chain.joints[k];
                 let lw = jw.evaluate(&ws.poses[k], &ws.poses[k + 1]);
                 let q = ws.poses[k].point(&jw.offset_a);
@@ -699,7 +837,7 @@ impl BendingTest {
         &self,
         model: &FineModel,
         state: &ModelState,
-        kappa: f64,
+        (kappa, eps): (f64, f64),
         iterations: usize,
         (window, one_layer): (&PitchWindow, Option<(f64, f64)>),
     ) -> BendingPoint {
@@ -733,6 +871,8 @@ impl BendingTest {
             moment,
             clamp_moment: moment_at(&ext, 1e-12, &line[0]),
             tension,
+            axial_force: window.mean(&Self::axial_profile(model, state)),
+            strain: eps,
             iterations,
             stick: count(ContactState::Stick),
             slip: count(ContactState::Slip),
@@ -771,6 +911,38 @@ fn one_layer_measure(
     (sum / cuts.max(1) as f64, curvature)
 }
 
+/// Fewest pitches of a bending test: its window keeps a pitch clear of each clamp.
+pub const MIN_PITCHES: usize = 3;
+
+/// Most corrections of the end plate's stretch in one load step ([`BendingTest::hold_tension`]).
+const MAX_AXIAL_CORRECTIONS: usize = 12;
+
+/// Relative tolerance on the axial force a strand of several layers is held at: its mean over
+/// the window within `AXIAL_TOLERANCE T` of the tension `T`. Single cuts of one equilibrium
+/// scatter more (the wires are cut at their joints nearest the core's cut plane): on the
+/// frictionless 1+6+12 at 0.01 N, straight, 12 segments per pitch, by up to 1.6e-5 T over
+/// every cut, by 2e-6 T over cuts at 0.3, 0.5 and 0.7 of the length; the static solve stops at
+/// a residual of 1e-8 of `T`. The clamp's independent reading agrees within that scatter
+/// (`the_axial_force_of_several_layers_is_held_at_the_tension`).
+pub const AXIAL_TOLERANCE: f64 = 1e-6;
+
+/// Index of the joint of wire `w` (poses `poses`) nearest the plane through `c` (m) normal to
+/// `normal`.
+fn nearest_joint(
+    w: &crate::model::Wire,
+    poses: &[Pose],
+    c: &Vector3<f64>,
+    normal: &Vector3<f64>,
+) -> usize {
+    w.chain
+        .joints
+        .iter()
+        .enumerate()
+        .map(|(k, jw)| (k, (poses[k].point(&jw.offset_a) - c).dot(normal).abs()))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(0, |(k, _)| k)
+}
+
 /// The bending moment about z at a cut at rest x `x_cut` through the point `c` (N m): minus
 /// the moment about `c` of the external loads before the cut.
 fn moment_at(ext: &[ExternalLoad], x_cut: f64, c: &Vector3<f64>) -> f64 {
@@ -805,6 +977,24 @@ mod tests {
         match test.run(&strand) {
             Err(BendingError::Setup(m)) => assert!(m.contains("strand.length"), "{m}"),
             other => panic!("{other:?}"),
+        }
+    }
+
+    /// Two pitches leave the window a pitch clear of each clamp empty (no cut, a NaN moment
+    /// before): the test refuses them, naming the reason, before building anything.
+    #[test]
+    fn fewer_than_three_pitches_are_refused() {
+        let strand = Strand::new(StrandSpec::paper(0.4, 2e8, 7801.0)).unwrap();
+        for pitches in [0, 1, 2] {
+            match BendingTest::frictionless(pitches, 8, 1.0, 0.1).run(&strand) {
+                Err(BendingError::Setup(m)) => {
+                    assert!(
+                        m.contains("at least 3") && m.contains("empty window"),
+                        "{m}"
+                    )
+                }
+                other => panic!("{pitches} pitches: {other:?}"),
+            }
         }
     }
 

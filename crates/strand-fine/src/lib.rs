@@ -58,7 +58,7 @@ pub mod statics;
 mod sweep;
 pub mod tangent;
 
-pub use bending::{BendingError, BendingPoint, BendingTest, Pressure};
+pub use bending::{AXIAL_TOLERANCE, BendingError, BendingPoint, BendingTest, Pressure};
 pub use chain::{Chain, WireSection};
 pub use contact::{
     ContactHistory, ContactLaw, ContactLoad, ContactOptions, ContactPoint, ContactState, Hold,

@@ -153,6 +153,18 @@ impl PitchWindow {
         (m / count, kappa / count)
     }
 
+    /// The weighted mean (unit of the values) of a `profile` (rest x in m, value) linear
+    /// between its points.
+    pub fn mean(&self, profile: &[(f64, f64)]) -> f64 {
+        let prefix = Prefix::new(profile);
+        let boxes = self.boxes();
+        boxes
+            .iter()
+            .map(|&(lo, hi)| (prefix.integral(hi) - prefix.integral(lo)) / (hi - lo))
+            .sum::<f64>()
+            / boxes.len().max(1) as f64
+    }
+
     /// One line for outputs: the boxes and the support (m).
     pub fn describe(&self) -> String {
         let (lo, hi) = self.support();

@@ -17,7 +17,8 @@
 //! moment per layer, followed along the same measured curvatures with its slip state (as
 //! `strand bend` does for `law_moment`), under `section.slip_pressure` `accumulated` and
 //! `two_faces` at the nominal strain and `two_faces` at each point's measured tension, and its
-//! fraction of slipping wire-stations per layer. With `CSV=PATH` these
+//! fraction of slipping wire-stations per layer (a fine fraction is `-`, an empty CSV field,
+//! where the layer has no closed contact of the kind). With `CSV=PATH` these
 //! rows go to a file as well. `STICK_LOSS=X` sets the contacts' `stick_loss` (the tangential
 //! penalty; default 0.05).
 //!
@@ -28,6 +29,7 @@
 //! friction moment is the law's at the curvature path f_j kappa.
 //!
 //! `cargo run --release -p strand-scene --example layer_moments -- SCENE T SPP PITCHES K1,K2,..`
+//! (PITCHES at least 3: the window keeps a pitch clear of each clamp).
 
 use std::collections::BTreeMap;
 
@@ -52,6 +54,15 @@ fn main() {
     let pitches: usize = args[4].parse().unwrap();
     let curvatures: Vec<f64> = args[5].split(',').map(|s| s.parse().unwrap()).collect();
     let strand = &scene.strand;
+    if pitches < strand_fine::bending::MIN_PITCHES {
+        eprintln!(
+            "layer_moments: {pitches} pitches: the test needs at least {} (its window of whole \
+             pitches keeps a pitch clear of each clamp; fewer leave no cut and no contact to \
+             measure)",
+            strand_fine::bending::MIN_PITCHES
+        );
+        std::process::exit(2);
+    }
     if let Ok(path) = std::env::var("LAW_ONLY") {
         law_only(&scene, t, &path);
         return;
@@ -341,6 +352,7 @@ fn path_table(
         }
         for key in &kinds {
             let c = r.contacts.get(key).copied().unwrap_or_default();
+            // Undefined (NaN, shown as `-`) where no contact of the kind is closed.
             row.push(if c[1] + c[2] > 0.0 {
                 c[2] / (c[1] + c[2])
             } else {
@@ -377,8 +389,13 @@ fn path_table(
                 })
                 .map_or(f64::NAN, |i| row[base + 6 * layers + i]);
             line += &format!(
-                "| {:+.4} {:+.4} {:+.4} {:.2}/{:.2}/{:.2} ",
-                q[0], q[1], q[2], inner, q[3], q[4]
+                "| {:+.4} {:+.4} {:+.4} {}/{:.2}/{:.2} ",
+                q[0],
+                q[1],
+                q[2],
+                fraction(inner),
+                q[3],
+                q[4]
             );
         }
         println!("{line}");
@@ -388,13 +405,30 @@ fn path_table(
         for row in &rows {
             text += &row
                 .iter()
-                .map(|v| format!("{v:.8e}"))
+                .map(|v| {
+                    if v.is_nan() {
+                        String::new()
+                    } else {
+                        format!("{v:.8e}")
+                    }
+                })
                 .collect::<Vec<_>>()
                 .join(",");
             text += "\n";
         }
         std::fs::write(&path, text).expect("CSV");
         println!("rows written to {path}");
+    }
+}
+
+/// A slipping fraction for the table (two decimals), or `-` where it is undefined: the layer
+/// has no closed contact of the kind in the window (NaN in the rows; an empty field in the
+/// CSV).
+fn fraction(v: f64) -> String {
+    if v.is_nan() {
+        " -  ".to_string()
+    } else {
+        format!("{v:.2}")
     }
 }
 

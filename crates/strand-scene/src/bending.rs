@@ -54,7 +54,8 @@ pub struct BendingSummary {
     /// All-stick bending stiffness of the law, K_min plus the wires' stick stiffness in the
     /// form `section.stick_stiffness` (N m^2).
     pub k_max: f64,
-    /// Smallest critical curvature of the law over a pitch at this tension (1/m).
+    /// Smallest critical curvature of the law at this tension (1/m), over the stations of
+    /// `law_moment` ([`first_slip_curvature`]).
     pub first_slip_curvature: Option<f64>,
     /// Strand length in pitches, segments per pitch.
     pub pitches: usize,
@@ -78,22 +79,45 @@ const MAX_CURVATURES: usize = 1000;
 const STATIONS: usize = 48;
 
 /// The law's moment (N m) at strain `eps` and curvature `kappa` (1/m), bent from straight,
-/// averaged over `STATIONS` stations of one pitch; and the smallest critical curvature there.
-fn law_moment(law: &SectionLaw, strand: &Strand, eps: f64, kappa: f64) -> (f64, Option<f64>) {
-    let pitch = strand.layers().first().map_or(strand.length(), |l| l.pitch);
+/// averaged over the stations of the law's path ([`LawPath::new`]: one pitch of a `1+m`
+/// strand, the test's `window` of whole pitches of every layer on several layers); and the
+/// smallest critical curvature there.
+fn law_moment(
+    law: &SectionLaw,
+    strand: &Strand,
+    window: &PitchWindow,
+    eps: f64,
+    kappa: f64,
+) -> (f64, Option<f64>) {
+    let stations = LawPath::new(law, strand, window).stations;
     let slip = vec![0.0; law.state_len()];
     let mut trial = slip.clone();
     let (mut sum, mut first) = (0.0, None::<f64>);
-    for i in 0..STATIONS {
-        let st = law.station(pitch * (i as f64 + 0.5) / STATIONS as f64);
-        sum += law.planar(&st, eps, kappa, &slip, &mut trial).moment;
-        for w in law.planar_wires(&st, eps, kappa, &slip) {
+    for st in &stations {
+        sum += law.planar(st, eps, kappa, &slip, &mut trial).moment;
+        for w in law.planar_wires(st, eps, kappa, &slip) {
             if let Some(c) = w.critical_curvature {
                 first = Some(first.map_or(c, |f| f.min(c)));
             }
         }
     }
-    (sum / STATIONS as f64, first)
+    (sum / stations.len() as f64, first)
+}
+
+/// The smallest critical curvature (1/m) of the section law `law` at the strain of tension
+/// `tension` (N), straight, over the stations the bending test's `law_moment` takes: one pitch
+/// of a `1+m` strand, the test's `window` of whole pitches of every layer on several layers
+/// ([`BendingTest::window_of`]); `None` where no wire has one (no friction).
+pub fn first_slip_curvature(law: &SectionLaw, window: &PitchWindow, tension: f64) -> Option<f64> {
+    let strand = law.strand();
+    law_moment(
+        law,
+        strand,
+        window,
+        tension / strand.axial_stiffness(),
+        1e-9,
+    )
+    .1
 }
 
 /// The section law followed along a curvature path at `STATIONS` stations of one pitch, each
@@ -230,7 +254,9 @@ pub fn run_bending_with_penalty(
     }
     let law = SectionLaw::with_options(strand, scene.law, &scene.section);
     let eps = opts.tension / strand.axial_stiffness();
-    let first = law_moment(&law, strand, eps, 1e-9).1;
+    let window = BendingTest::window_of(strand, opts.pitches)
+        .map_err(|e| invalid(format!("bending test: {e}")))?;
+    let first = first_slip_curvature(&law, &window, opts.tension);
     let curvatures = if opts.curvatures.is_empty() {
         let k0 = first.unwrap_or(1.0 / strand.length());
         (0..10)
@@ -265,9 +291,6 @@ pub fn run_bending_with_penalty(
         wire_springs: Default::default(),
         pressure: Default::default(),
     };
-    let window = test
-        .window(strand)
-        .map_err(|e| invalid(format!("bending test: {e}")))?;
     let last = *curvatures.last().expect("at least one curvature");
     let start = Instant::now();
     let (curve, _, _) = test
@@ -298,14 +321,19 @@ pub fn run_bending_with_penalty(
             "stick",
             "slip",
             "open",
+            "axial_force",
+            "law_moment_at_axial_force",
         ],
     )
     .map_err(io_err(&path))?;
     let mut points = Vec::new();
     let mut law_path = LawPath::new(&law, strand, &window);
+    let mut measured_path = LawPath::new(&law, strand, &window);
     // The tension step (curvature zero) first, then the load steps.
     for p in curve.iter().skip(1) {
         let m_law = law_path.moment(&law, eps, p.curvature);
+        let m_measured =
+            measured_path.moment(&law, p.axial_force / strand.axial_stiffness(), p.curvature);
         csv.row(&[
             p.imposed_curvature,
             p.curvature,
@@ -318,6 +346,8 @@ pub fn run_bending_with_penalty(
             p.stick as f64,
             p.slip as f64,
             p.open as f64,
+            p.axial_force,
+            m_measured,
         ])
         .map_err(io_err(&path))?;
         points.push([p.curvature, p.moment, m_law]);

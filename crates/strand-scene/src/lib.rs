@@ -17,7 +17,8 @@ pub mod section_batch;
 mod selection;
 
 pub use bending::{
-    BendingOptions, BendingSummary, law_path_moments, run_bending, run_bending_with_penalty,
+    BendingOptions, BendingSummary, first_slip_curvature, law_path_moments, run_bending,
+    run_bending_with_penalty,
 };
 pub use law_bending::{LawBendingOptions, LawBendingSummary, loading_moments, run_law_bending};
 pub use run::{

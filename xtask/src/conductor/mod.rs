@@ -5,7 +5,8 @@
 //!
 //! The curve on first loading is computed at the measured curvatures, the strand bent from
 //! straight and unslipped (`strand_scene::loading_moments`, the hysteretic law averaged over
-//! the stations of the longest pitch, as `strand bend --model equivalent` draws it), for
+//! stations that take every layer over its own whole pitch, as `strand bend --model
+//! equivalent` draws it), for
 //!
 //! * (a) the project's law at the literature friction coefficient, each contact pressure
 //!   (`section.slip_pressure`);

@@ -552,9 +552,34 @@ impl SectionLaw {
     /// Precomputes the station at material coordinate `x` (m): every layer's wires, from the
     /// core outward.
     pub fn station(&self, x: f64) -> Station {
+        self.station_at(x, |_| x)
+    }
+
+    /// A station whose layer `j` (0 the first helical layer) has its wires at the phases of
+    /// material coordinate `xs[j]` (m; the station's `x` is `xs[0]`, 0 with no layer). Every
+    /// wire's slider reads only its own phase (its lever and gains), so stations `i` with
+    /// `xs[j] = P_j (i + 1/2) / n` take each layer's mean over its own pitch `P_j` at once, in
+    /// `n` stations, for any number of layers and any ratio of their pitches.
+    ///
+    /// # Panics
+    ///
+    /// If `xs` has fewer entries than the strand has layers.
+    pub fn station_by_layer(&self, xs: &[f64]) -> Station {
+        assert!(
+            xs.len() >= self.layers.len(),
+            "one coordinate per layer: {} for {} layers",
+            xs.len(),
+            self.layers.len()
+        );
+        self.station_at(xs.first().copied().unwrap_or(0.0), |j| xs[j])
+    }
+
+    /// The station recorded at `x` (m) with layer `j`'s wires at `at(j)` (m).
+    fn station_at(&self, x: f64, at: impl Fn(usize) -> f64) -> Station {
         let mut wires = Vec::with_capacity(self.sliders());
         let mut planar = Vec::with_capacity(self.layers.len());
-        for (law, h) in self.layers.iter().zip(self.strand.layers()) {
+        for (j, (law, h)) in self.layers.iter().zip(self.strand.layers()).enumerate() {
+            let x = at(j);
             let m = h.wires();
             // The pitch-averaged law's samples: wire i % m at the offset of sample i / m, the
             // samples centred on x and spaced by P / (m S), so that the layer's m S phases
