@@ -799,6 +799,8 @@ fn crossing_stiffness_per_length_does_not_depend_on_the_mesh() {
             "{n}: normal {per_n:e}"
         );
     }
+}
+
 /// The bending test holds the axial force of a strand of several layers at the tension: the
 /// frictionless 1+6+12 strand at T = 0.01 N (3 outer pitches of 12 segments, one arc at
 /// 0.1 1/m). The test moves its end plate until the axial force over its window is T; the
