@@ -10,10 +10,11 @@
 //! tangent stiffness against the masses ([`stable_time_step`]).
 
 use nalgebra::{Matrix3, SMatrix, Vector3};
+use rayon::prelude::*;
 
 use crate::contact::ContactHistory;
 use crate::model::{Energies, FineModel, ModelState, Wire, WireLoads, WireState, update_frames};
-use crate::segment::{Frame, Pose};
+use crate::segment::Frame;
 use crate::sweep;
 
 /// `B = M^{-1/2}` block by block at `state`, one 6 x 6 block per segment: `m^{-1/2} I` on its
@@ -101,143 +102,15 @@ pub fn stable_time_step(model: &FineModel, state: &ModelState, safety: f64) -> f
     safety * MOTION_FACTOR * 2.0 / highest_frequency(model, state)
 }
 
-/// What one kick-drift sweep does: commit the previous step's contact histories and kick
-/// its second half (unless `first`), kick the first half of the next step, drift and update
-/// the frames (unless `last`).
-#[derive(Debug, Clone, Copy)]
-struct KickDrift {
-    /// Half the time step (s).
-    half_step: f64,
-    /// Time step (s).
-    step: f64,
-    /// Factor of the damping on the momenta over a step (-).
-    damping: f64,
-    /// The sweep before the first step (no commit, no second half kick).
-    first: bool,
-    /// The sweep after the last step (no first half kick, drift or frames).
-    last: bool,
-}
-
-/// Segments `first..first + poses.len()` of one wire and the contact histories
-/// `first_contact..first_contact + histories.len()` of its contacts, for a kick-drift sweep:
-/// a whole wire, or one side of a wire cut between the two halves of a sweep.
-struct WireSpan<'a> {
-    wire: &'a Wire,
-    loads: &'a WireLoads,
-    first: usize,
-    first_contact: usize,
-    poses: &'a mut [Pose],
-    velocities: &'a mut [Vector3<f64>],
-    momenta: &'a mut [Vector3<f64>],
-    frames: &'a mut [Frame],
-    histories: &'a mut [ContactHistory],
-}
-
-impl<'a> WireSpan<'a> {
-    /// The spans of whole wires, in wire order.
-    fn wires(
-        model: &'a [Wire],
-        states: &'a mut [WireState],
-        histories: &'a mut [Vec<ContactHistory>],
-        loads: &'a [WireLoads],
-        frames: &'a mut [Vec<Frame>],
-    ) -> impl Iterator<Item = WireSpan<'a>> + Send {
-        model
-            .iter()
-            .zip(states)
-            .zip(histories)
-            .zip(loads)
-            .zip(frames)
-            .map(|((((wire, s), h), loads), f)| WireSpan {
-                wire,
-                loads,
-                first: 0,
-                first_contact: 0,
-                poses: &mut s.poses,
-                velocities: &mut s.velocities,
-                momenta: &mut s.angular_momenta,
-                frames: f,
-                histories: h,
-            })
-    }
-
-    /// The span cut after its first `m` segments (and the same share of its contacts).
-    fn split_at(self, m: usize) -> (Self, Self) {
-        let n = self.poses.len();
-        let c = self.histories.len() * m / n.max(1);
-        let (p0, p1) = self.poses.split_at_mut(m);
-        let (v0, v1) = self.velocities.split_at_mut(m);
-        let (l0, l1) = self.momenta.split_at_mut(m);
-        let (f0, f1) = self.frames.split_at_mut(m);
-        let (h0, h1) = self.histories.split_at_mut(c);
-        (
-            WireSpan {
-                wire: self.wire,
-                loads: self.loads,
-                first: self.first,
-                first_contact: self.first_contact,
-                poses: p0,
-                velocities: v0,
-                momenta: l0,
-                frames: f0,
-                histories: h0,
-            },
-            WireSpan {
-                wire: self.wire,
-                loads: self.loads,
-                first: self.first + m,
-                first_contact: self.first_contact + c,
-                poses: p1,
-                velocities: v1,
-                momenta: l1,
-                frames: f1,
-                histories: h1,
-            },
-        )
-    }
-
-    /// The span's share of the kick-drift sweep `kd`.
-    fn kick_drift(self, kd: &KickDrift) {
-        let l = self.loads;
-        if !kd.first {
-            for (hi, c) in self
-                .histories
-                .iter_mut()
-                .zip(&l.contacts[self.first_contact..])
-            {
-                *hi = c.history;
-            }
-        }
-        let n = self.poses.len();
-        let segments = &self.wire.chain.segments[self.first..self.first + n];
-        let forces = &l.forces[self.first..self.first + n];
-        let torques = &l.torques[self.first..self.first + n];
-        let (h, dt, damp) = (kd.half_step, kd.step, kd.damping);
-        for (k, seg) in segments.iter().enumerate() {
-            let (dv, dl) = (forces[k] * (h / seg.mass), torques[k] * h);
-            let (v, am) = (&mut self.velocities[k], &mut self.momenta[k]);
-            if !kd.first {
-                *v += dv;
-                *am += dl;
-                if damp < 1.0 {
-                    *v *= damp;
-                    *am *= damp;
-                }
-            }
-            if kd.last {
-                continue;
-            }
-            *v += dv;
-            *am += dl;
-            let p = &mut self.poses[k];
-            p.position += *v * dt;
-            p.rotation = seg.free_rotation(&p.rotation, am, dt);
-        }
-        if !kd.last {
-            update_frames(self.poses, self.frames);
-        }
-    }
-}
+/// One wire's share of a kick-drift sweep: the wire, its state, its committed contact
+/// histories, its loads and its segments' frames.
+type KickDrift<'a> = (
+    (
+        ((&'a Wire, &'a mut WireState), &'a mut Vec<ContactHistory>),
+        &'a WireLoads,
+    ),
+    &'a mut Vec<Frame>,
+);
 
 /// Kick-drift-kick integrator with its load buffers (allocation-free steps).
 #[derive(Debug, Clone)]
@@ -300,13 +173,10 @@ impl Integrator {
     /// `steps` calls of [`Integrator::step`] with those load factors, in two sweeps over the
     /// wires per step instead of four: the commit of a step's contact histories, its second
     /// half kick (and damping), the first half kick and drift of the next and the segments'
-    /// frames at the new poses are one sweep, the loads the other. Each sweep is cut in two
-    /// halves, the kick-drift sweep at equal segment counts (a wire cut in two if need be),
-    /// the loads' where half their estimated cost falls (`load_span`); the halves run in
-    /// parallel (one `rayon::join`) when rayon's pool has more than one thread, else one
-    /// after the other in the calling thread (`sweep` module), and in parallel all `steps`
-    /// run on one of the pool's threads. Every segment's and contact's arithmetic is the same either way and
-    /// the cuts do not depend on the thread count: the numbers are the same bit for bit.
+    /// frames at the new poses are one sweep, the loads the other. The sweeps run in
+    /// parallel when rayon's pool has more than one thread, else in the calling thread
+    /// (`sweep` module), and in parallel all `steps` run on one of the pool's threads; the
+    /// numbers are the same either way.
     pub fn advance(
         &mut self,
         model: &FineModel,
@@ -335,42 +205,62 @@ impl Integrator {
         let dt = self.dt;
         let h = 0.5 * dt;
         let damp = (-self.damping_rate * dt).exp();
-        // The kick-drift sweep's halves: equal segment counts.
-        let (cut_wire, cut) = sweep::halfway(model.wires.iter().map(|w| w.chain.len()));
-        // The loads sweep's halves: about equal cost.
-        let load_cut = crate::load_span::plan(&model.wires);
         for i in 0..=steps {
             // Commit (the previous step's), kick (the previous step's second half and this
             // step's first), then drift and frames; after the last step, commit and the
             // second half.
             let (first, last) = (i == 0, i == steps);
-            let kd = KickDrift {
-                half_step: h,
-                step: dt,
-                damping: damp,
-                first,
-                last,
-            };
             let ModelState {
                 wires, contacts, ..
             } = &mut *state;
-            let (wa, wb) = wires.split_at_mut(cut_wire);
-            let (ca, cb) = contacts.split_at_mut(cut_wire);
-            let (fa, fb) = self.frames.split_at_mut(cut_wire);
-            let (la, lb) = self.loads.split_at(cut_wire);
-            let (ma, mb) = model.wires.split_at(cut_wire);
-            let before = WireSpan::wires(ma, wa, ca, la, fa);
-            let mut after = WireSpan::wires(mb, wb, cb, lb, fb);
-            let (head, tail) = after.next().map(|s| s.split_at(cut)).unzip();
-            sweep::both(
-                parallel,
-                move || before.chain(head).for_each(|s| s.kick_drift(&kd)),
-                move || {
-                    tail.into_iter()
-                        .chain(after)
-                        .for_each(|s| s.kick_drift(&kd))
-                },
-            );
+            let kick_drift = |((((w, s), hist), l), frames): KickDrift<'_>| {
+                if !first {
+                    for (hi, c) in hist.iter_mut().zip(&l.contacts) {
+                        *hi = c.history;
+                    }
+                }
+                for (k, seg) in w.chain.segments.iter().enumerate() {
+                    let (dv, dl) = (l.forces[k] * (h / seg.mass), l.torques[k] * h);
+                    if !first {
+                        s.velocities[k] += dv;
+                        s.angular_momenta[k] += dl;
+                        if damp < 1.0 {
+                            s.velocities[k] *= damp;
+                            s.angular_momenta[k] *= damp;
+                        }
+                    }
+                    if last {
+                        continue;
+                    }
+                    s.velocities[k] += dv;
+                    s.angular_momenta[k] += dl;
+                    let p = &mut s.poses[k];
+                    p.position += s.velocities[k] * dt;
+                    p.rotation = seg.free_rotation(&p.rotation, &s.angular_momenta[k], dt);
+                }
+                if !last {
+                    update_frames(&s.poses, frames);
+                }
+            };
+            if parallel {
+                model
+                    .wires
+                    .par_iter()
+                    .zip(wires.par_iter_mut())
+                    .zip(contacts.par_iter_mut())
+                    .zip(self.loads.par_iter())
+                    .zip(self.frames.par_iter_mut())
+                    .for_each(kick_drift);
+            } else {
+                model
+                    .wires
+                    .iter()
+                    .zip(wires.iter_mut())
+                    .zip(contacts.iter_mut())
+                    .zip(&self.loads)
+                    .zip(self.frames.iter_mut())
+                    .for_each(kick_drift);
+            }
             if !first {
                 // The friction loss, summed in wire order as `commit_contacts` does.
                 for l in &self.loads {
@@ -381,13 +271,7 @@ impl Integrator {
                 break;
             }
             self.load_factor = load_factor(self.time + dt);
-            model.loads_at_frames_cut(
-                state,
-                self.load_factor,
-                &self.frames,
-                &mut self.loads,
-                load_cut,
-            );
+            model.loads_at_frames(state, self.load_factor, &self.frames, &mut self.loads);
             self.time += dt;
             self.steps += 1;
         }

@@ -43,7 +43,6 @@ pub mod dynamics;
 pub mod interlayer;
 pub mod joint;
 pub mod load_continuation;
-mod load_span;
 pub mod model;
 pub mod motion;
 pub mod penalty;

@@ -24,7 +24,6 @@ use crate::contact::{
 };
 use crate::interlayer::{self, LinkKind, WireLink};
 use crate::joint::{JointSpring, JointStiffness};
-use crate::load_span::{self, LoadCut, LoadSpan};
 use crate::penalty;
 use crate::segment::{Frame, Placement, Pose};
 use crate::sweep;
@@ -661,7 +660,6 @@ impl FineModel {
                 friction_energy: 0.0,
                 slip_work: 0.0,
                 frames: vec![Frame::default(); w.chain.len()],
-                joint_energies: vec![0.0; w.chain.joints.len()],
             })
             .collect()
     }
@@ -701,20 +699,6 @@ impl FineModel {
         load_factor: f64,
         frames: &[Vec<Frame>],
         loads: &mut [WireLoads],
-    ) {
-        let cut = load_span::plan(&self.wires);
-        self.loads_at_frames_cut(state, load_factor, frames, loads, cut);
-    }
-
-    /// [`FineModel::loads_at_frames`] with its sweep cut at `cut` (the time stepping plans
-    /// it once, [`load_span::plan`]).
-    pub(crate) fn loads_at_frames_cut(
-        &self,
-        state: &ModelState,
-        load_factor: f64,
-        frames: &[Vec<Frame>],
-        loads: &mut [WireLoads],
-        cut: LoadCut,
     ) {
         let g = self.gravity * load_factor;
         let all_frames = frames;
@@ -781,63 +765,22 @@ impl FineModel {
             l.friction_energy = fe;
             l.slip_work = sw;
         };
-        // Two halves of about equal cost, a wire cut in two if need be (`load_span`).
-        let LoadCut {
-            wire: cw,
-            segment: m,
-        } = cut;
-        let (la, lb) = loads.split_at_mut(cw);
-        let (spans, lb, rest) = match lb.split_first_mut() {
-            Some((lc, rest)) if m > 0 => {
-                (Some(LoadSpan::halves(&self.wires[cw], lc, m)), rest, cw + 1)
-            }
-            _ => (None, lb, cw),
-        };
-        let (span_a, span_b) = spans.unzip();
-        let span_loads = |span: LoadSpan<'_>| {
-            span.evaluate(
-                &self.wires[cw],
-                &state.wires[cw].poses,
-                &all_frames[cw],
-                &all_frames[0],
-                core_segs,
-                &state.contacts[cw],
-                &g,
-                load_factor,
-            )
-        };
-        let wire_loads = &wire_loads;
-        sweep::both(
-            sweep::parallel(),
-            || {
-                self.wires
-                    .iter()
-                    .zip(&state.wires)
-                    .zip(&state.contacts)
-                    .zip(la)
-                    .enumerate()
-                    .for_each(wire_loads);
-                span_a.map(span_loads);
-            },
-            || {
-                span_b.map(span_loads);
-                self.wires[rest..]
-                    .iter()
-                    .zip(&state.wires[rest..])
-                    .zip(&state.contacts[rest..])
-                    .zip(lb)
-                    .enumerate()
-                    .for_each(|(i, x)| wire_loads((rest + i, x)))
-            },
-        );
-        if m > 0 {
-            load_span::span_energies(
-                &self.wires[cw],
-                &state.wires[cw].poses,
-                &g,
-                load_factor,
-                &mut loads[cw],
-            );
+        if sweep::parallel() {
+            self.wires
+                .par_iter()
+                .zip(state.wires.par_iter())
+                .zip(state.contacts.par_iter())
+                .zip(loads.par_iter_mut())
+                .enumerate()
+                .for_each(wire_loads);
+        } else {
+            self.wires
+                .iter()
+                .zip(&state.wires)
+                .zip(&state.contacts)
+                .zip(loads.iter_mut())
+                .enumerate()
+                .for_each(wire_loads);
         }
         let core_poses = &state.wires[0].poses;
         // The core's share, in a fixed order.
@@ -1036,9 +979,6 @@ pub struct WireLoads {
     /// Frames of the wire's segments at the last evaluation (scratch of
     /// [`FineModel::compute_loads`]).
     pub frames: Vec<Frame>,
-    /// Energy of each of the wire's joints (J), kept when its loads are evaluated in spans
-    /// (scratch of the loads sweep, `load_span`).
-    pub(crate) joint_energies: Vec<f64>,
 }
 
 /// Energies of the model (J).
@@ -1107,52 +1047,6 @@ mod tests {
             Support::Clamped,
             Support::Free,
         )
-    }
-
-    /// The loads sweep cut inside a wire (`load_span`) gives the loads, contact results and
-    /// energies of the sweep over whole wires, bit for bit, on the Table 1 strand moving
-    /// under gravity with contacts closed in stick and slip.
-    #[test]
-    fn loads_cut_inside_a_wire_are_those_of_whole_wires() {
-        let mut m = paper_model();
-        m.add_contacts(&table1(), &ContactOptions::default());
-        m.gravity = Vector3::new(0.0, -80.0, 0.0);
-        let mut state = m.rest_state();
-        let mut int = crate::dynamics::Integrator::new(&m, &state, 2e-6);
-        int.damping_rate = 10.0;
-        int.advance(&m, &mut state, 600, &|_| 1.0);
-        let cut = load_span::plan(&m.wires);
-        assert!(cut.segment > 0, "the plan cuts inside a wire: {cut:?}");
-        let mut frames = m.load_buffers();
-        m.compute_loads(&state, 1.0, &mut frames);
-        let frames: Vec<Vec<Frame>> = frames.into_iter().map(|l| l.frames).collect();
-        let evaluate = |cut: LoadCut| {
-            let mut loads = m.load_buffers();
-            m.loads_at_frames_cut(&state, 1.0, &frames, &mut loads, cut);
-            for l in &mut loads {
-                l.joint_energies.fill(0.0);
-            }
-            loads
-        };
-        let spans = evaluate(cut);
-        let whole = evaluate(LoadCut {
-            wire: m.wires.len(),
-            segment: 0,
-        });
-        let states = |loads: &[WireLoads], s: ContactState| {
-            loads
-                .iter()
-                .flat_map(|l| &l.contacts)
-                .filter(|c| c.state == s)
-                .count()
-        };
-        assert!(states(&whole, ContactState::Stick) > 10);
-        assert!(states(&whole, ContactState::Slip) > 10);
-        assert!(whole[cut.wire].slip_work > 0.0);
-        assert!(
-            spans == whole,
-            "the loads cut at {cut:?} differ from the whole wires'"
-        );
     }
 
     /// Typical spring force of a wire joint: the helical wire's E A times a strain of 1e-3.

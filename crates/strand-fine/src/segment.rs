@@ -96,25 +96,12 @@ impl Default for Frame {
     }
 }
 
-/// `matrix * offset`: a body-frame offset (m) turned into world axes. For an offset on the
-/// body axis 1 (every joint arm and contact point of a chain) the first column times the
-/// offset's length, without the six products with the zero components: the same value,
-/// up to the sign of an exactly zero component.
-#[inline]
-pub(crate) fn rotate_offset(matrix: &Matrix3<f64>, offset: &Vector3<f64>) -> Vector3<f64> {
-    if offset.y == 0.0 && offset.z == 0.0 {
-        matrix.column(0) * offset.x
-    } else {
-        matrix * offset
-    }
-}
-
 impl Placement for Frame {
     fn centre(&self) -> Vector3<f64> {
         self.position
     }
     fn point(&self, offset: &Vector3<f64>) -> Vector3<f64> {
-        self.position + rotate_offset(&self.matrix, offset)
+        self.position + self.matrix * offset
     }
     fn tangent(&self) -> Vector3<f64> {
         self.matrix.column(0).into_owned()
@@ -201,7 +188,6 @@ impl Segment {
     /// Exact torque-free motion of the axisymmetric body over `dt` (s) with constant
     /// world-frame angular momentum `h`: the rotation becomes
     /// `exp(dt h / I_2) R exp(dt h_1 (1/I_1 - 1/I_2) e_1)`.
-    #[inline(always)]
     pub fn free_rotation(
         &self,
         rotation: &UnitQuaternion<f64>,
