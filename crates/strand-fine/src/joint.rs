@@ -17,7 +17,7 @@
 
 use nalgebra::{SMatrix, UnitQuaternion, Vector3};
 
-use crate::segment::{Frame, Pose};
+use crate::segment::{Frame, Pose, rotate_offset};
 use crate::so3;
 
 /// Spring constants of one joint.
@@ -94,7 +94,8 @@ impl JointSpring {
     fn gap(&self, a: &Pose, b: &Pose) -> Vector3<f64> {
         // The arithmetic of `evaluate_in`, so that the rest pose is exactly relaxed.
         let (fa, fb) = (Frame::of(a), Frame::of(b));
-        let d = (b.position + fb.matrix * self.offset_b) - (a.position + fa.matrix * self.offset_a);
+        let d = (b.position + rotate_offset(&fb.matrix, &self.offset_b))
+            - (a.position + rotate_offset(&fa.matrix, &self.offset_a));
         fa.matrix.tr_mul(&d)
     }
 
@@ -116,8 +117,8 @@ impl JointSpring {
     /// [`JointSpring::evaluate`] with the bodies' frames `fa`, `fb` (their poses' rotation
     /// matrices) at hand: a wire's segments share theirs between two joints and contacts.
     pub fn evaluate_in(&self, a: &Pose, fa: &Frame, b: &Pose, fb: &Frame) -> JointLoad {
-        let arm_a = fa.matrix * self.offset_a;
-        let arm_b = fb.matrix * self.offset_b;
+        let arm_a = rotate_offset(&fa.matrix, &self.offset_a);
+        let arm_b = rotate_offset(&fb.matrix, &self.offset_b);
         let d = (b.position + arm_b) - (a.position + arm_a);
         let e = fa.matrix.tr_mul(&d) - self.rest_gap;
         let fe = self.stiffness.translational.component_mul(&e);

@@ -96,12 +96,25 @@ impl Default for Frame {
     }
 }
 
+/// `matrix * offset`: a body-frame offset (m) turned into world axes. For an offset on the
+/// body axis 1 (every joint arm and contact point of a chain) the first column times the
+/// offset's length, without the six products with the zero components: the same value,
+/// up to the sign of an exactly zero component.
+#[inline]
+pub(crate) fn rotate_offset(matrix: &Matrix3<f64>, offset: &Vector3<f64>) -> Vector3<f64> {
+    if offset.y == 0.0 && offset.z == 0.0 {
+        matrix.column(0) * offset.x
+    } else {
+        matrix * offset
+    }
+}
+
 impl Placement for Frame {
     fn centre(&self) -> Vector3<f64> {
         self.position
     }
     fn point(&self, offset: &Vector3<f64>) -> Vector3<f64> {
-        self.position + self.matrix * offset
+        self.position + rotate_offset(&self.matrix, offset)
     }
     fn tangent(&self) -> Vector3<f64> {
         self.matrix.column(0).into_owned()
