@@ -403,6 +403,7 @@ pub(crate) fn respond<W: Placement, C: Placement>(
 
 /// [`respond`] written into `out` (the load buffer's slot: no copy of the result).
 #[allow(clippy::too_many_arguments)]
+#[inline(always)]
 fn respond_into<W: Placement, C: Placement>(
     law: &ContactLaw,
     history: &ContactHistory,
