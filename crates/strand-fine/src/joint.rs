@@ -100,6 +100,7 @@ impl JointSpring {
     }
 
     /// Rotation vector `log(Q_0^T R_a^T R_b)` (rad), in `b`'s axes.
+    #[inline(always)]
     pub fn rotation_strain(&self, a: &Pose, b: &Pose) -> Vector3<f64> {
         so3::log(&(self.rest_rotation.inverse() * (a.rotation.inverse() * b.rotation)))
     }
@@ -116,6 +117,7 @@ impl JointSpring {
 
     /// [`JointSpring::evaluate`] with the bodies' frames `fa`, `fb` (their poses' rotation
     /// matrices) at hand: a wire's segments share theirs between two joints and contacts.
+    #[inline(always)]
     pub fn evaluate_in(&self, a: &Pose, fa: &Frame, b: &Pose, fb: &Frame) -> JointLoad {
         let arm_a = rotate_offset(&fa.matrix, &self.offset_a);
         let arm_b = rotate_offset(&fb.matrix, &self.offset_b);

@@ -201,6 +201,7 @@ impl Segment {
     /// Exact torque-free motion of the axisymmetric body over `dt` (s) with constant
     /// world-frame angular momentum `h`: the rotation becomes
     /// `exp(dt h / I_2) R exp(dt h_1 (1/I_1 - 1/I_2) e_1)`.
+    #[inline(always)]
     pub fn free_rotation(
         &self,
         rotation: &UnitQuaternion<f64>,
