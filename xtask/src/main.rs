@@ -68,7 +68,7 @@ enum Task {
     Conductor(conductor::ConductorArgs),
     /// The equivalent section law of the 1+6+12 strand against the fine virtual bending test
     /// with friction (examples/steel-1x19-swing.json): moment against curvature with load
-    /// reversals at 100 and 1000 N, 8, 12 and 16 segments per pitch, each point judged within
+    /// reversals at 100 and 1000 N, 12, 16 and 20 segments per pitch, each point judged within
     /// 5 % with the fine model's mesh change added; target/multilayer-curve/. Fails on a point
     /// that misses it.
     MultilayerCurve(multilayer_curve::MultilayerCurveArgs),
