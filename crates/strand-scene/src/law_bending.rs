@@ -186,15 +186,7 @@ fn stations(law: &SectionLaw) -> Vec<Station> {
     } else {
         STATIONS
     };
-    (0..n)
-        .map(|i| {
-            let at: Vec<f64> = pitches
-                .iter()
-                .map(|p| p * (i as f64 + 0.5) / n as f64)
-                .collect();
-            law.station_by_layer(&at)
-        })
-        .collect()
+    law.stations_by_layer(n)
 }
 
 /// The section law's moment on first loading (N m) at each of `curvatures` (1/m, positive and

@@ -184,17 +184,7 @@ fn the_law_curve_of_two_layers_is_the_mean_along_the_strand() {
         xs.iter().map(|&x| law.station(x)).collect()
     };
     // Every layer over its own pitch at `per` stations (the curve's rule at 384).
-    let by_layer = |per: usize| -> Vec<strand_core::Station> {
-        (0..per)
-            .map(|i| {
-                let xs: Vec<f64> = pitches
-                    .iter()
-                    .map(|p| p * (i as f64 + 0.5) / per as f64)
-                    .collect();
-                law.station_by_layer(&xs)
-            })
-            .collect()
-    };
+    let by_layer = |per: usize| law.stations_by_layer(per);
     let along = |per: usize| -> Vec<f64> {
         (0..per * n)
             .map(|i| n as f64 * outer * (i as f64 + 0.5) / (per * n) as f64)

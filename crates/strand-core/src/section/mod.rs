@@ -574,6 +574,23 @@ impl SectionLaw {
         self.station_at(xs.first().copied().unwrap_or(0.0), |j| xs[j])
     }
 
+    /// The `n` stations [`Self::station_by_layer`] describes: station `i` has layer `j`'s wires
+    /// at `P_j (i + 1/2) / n` along that layer's own pitch `P_j` (m), so that a mean over them
+    /// is every layer's mean over its whole pitch at once.
+    pub fn stations_by_layer(&self, n: usize) -> Vec<Station> {
+        (0..n)
+            .map(|i| {
+                let xs: Vec<f64> = self
+                    .strand
+                    .layers()
+                    .iter()
+                    .map(|l| l.pitch * (i as f64 + 0.5) / n as f64)
+                    .collect();
+                self.station_by_layer(&xs)
+            })
+            .collect()
+    }
+
     /// The station recorded at `x` (m) with layer `j`'s wires at `at(j)` (m).
     fn station_at(&self, x: f64, at: impl Fn(usize) -> f64) -> Station {
         let mut wires = Vec::with_capacity(self.sliders());
