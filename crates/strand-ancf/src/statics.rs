@@ -528,10 +528,10 @@ fn converged(beam: &Beam, w: &mut Work, tol: f64) -> bool {
         .all(|(r, f)| r.abs() <= tol + ROUND_OFF * f64::EPSILON * f)
 }
 
-/// The unit round-offs of its coordinates by which [`within_measured_round_off`] moves the
-/// iterate, and the multiple of the residual's change it allows. The residual of the
-/// floating-point equilibrium is itself one sample of that change; a few samples' worth
-/// allows for the spread between samples.
+/// The multiple of the residual's change under a one-unit-round-off move of the coordinates
+/// that [`within_measured_round_off`] allows. The residual of the floating-point equilibrium
+/// is itself one sample of that change; a few samples' worth allows for the spread between
+/// samples.
 const MEASURED_ROUND_OFF: f64 = 4.0;
 
 /// Whether every component of the residual `w.r` at `w.q_try` is within `tol` (N) or within
