@@ -113,7 +113,7 @@ struct AlphaWork {
     /// inexact matrix.
     matrix_scale: f64,
     /// Energy scale of the run so far (J): the largest ledger energy seen
-    /// ([`Energies::largest`]) or, if larger, the work of the strand's inertial force at a
+    /// ([`Energies::largest`](crate::dynamics::Energies::largest)) or, if larger, the work of the strand's inertial force at a
     /// step's prediction over the tolerance's motion scale (mass times the root mean square of
     /// the acceleration times that length), which gives a strand released from rest a scale at
     /// its first step.
