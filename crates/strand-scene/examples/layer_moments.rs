@@ -20,7 +20,8 @@
 //! fraction of slipping wire-stations per layer (a fine fraction is `-`, an empty CSV field,
 //! where the layer has no closed contact of the kind). With `CSV=PATH` these
 //! rows go to a file as well. `STICK_LOSS=X` sets the contacts' `stick_loss` (the tangential
-//! penalty; default 0.05).
+//! penalty; default 0.05); `POINTS=P` the contact points per segment on the core
+//! (`ContactOptions::points_per_segment`; default by layers, one on a strand of several).
 //!
 //! `LAW_ONLY=ROWS.csv STICK_SCALE=f1,f2,..` runs no fine test: it follows the law along the
 //! measured curvatures of such a CSV with each layer's stick stiffness scaled by f_j. For the
@@ -76,6 +77,7 @@ fn main() {
             penetration: scene.models.fine.map_or(1e-3, |f| f.penetration),
             stick_loss: std::env::var("STICK_LOSS")
                 .map_or(ContactOptions::default().stick_loss, |v| v.parse().unwrap()),
+            points_per_segment: std::env::var("POINTS").ok().map(|v| v.parse().unwrap()),
             ..ContactOptions::default()
         },
         friction: strand.friction(),
