@@ -231,11 +231,8 @@ fn probe_frictionless_1x19() {
 /// and |F_t| <= mu N; slipping: |F_t| = mu N) and its secant stiffness lies between the
 /// closed forms K_min (all slip, Costello) and K_max (plane sections). Until the crossing
 /// rule kept the more central of two links, this step stalled at a scaled residual of about
-/// 2e-2 (Multilayer page, "Fine bending with friction"). At 8 segments per pitch it converged
-/// with two contact points per segment on the core; with the one point of a strand of several
-/// layers it stalls there at 1.9e-5, also with halvings (`MU=0.3 T=100 K=0.05 SPP=8 POINTS=N`
-/// on `probe_frictionless_1x19`; Multilayer page, "The stick regime of the default
-/// contacts").
+/// 2e-2 (Multilayer page, "Fine bending with friction"). At 8 segments per pitch, see
+/// [`friction_bending_path_of_1x19_at_8_segments_per_pitch_finishes`].
 #[test]
 fn friction_bending_step_of_1x19_converges_within_the_coulomb_bounds() {
     let s = strand_1x19(1.0, false);
@@ -247,8 +244,29 @@ fn friction_bending_step_of_1x19_converges_within_the_coulomb_bounds() {
         .run_with_state(&s)
         .expect("first friction bending step");
     let p = curve.last().unwrap();
+    let (closed, slipping) = coulomb_counts(&m, &state, mu);
+    let k = p.secant_stiffness();
+    let (k_min, k_max) = (
+        s.min_bending_stiffness(BaseStiffness::Costello),
+        s.max_bending_stiffness(BaseStiffness::Costello),
+    );
+    println!(
+        "kappa {:.4e} 1/m in {} Newton iterations: {closed} contacts closed, {slipping} \
+         slipping; M / kappa = {k:.4e} N m^2 = {:.4} K_min, {:.4} K_max",
+        p.curvature,
+        p.iterations,
+        k / k_min,
+        k / k_max
+    );
+    assert!(closed > 0 && slipping > 0 && slipping < closed);
+    assert!(k_min < k && k < k_max, "{k} outside [{k_min}, {k_max}]");
+}
+
+/// Closed and slipping contacts of `m` at `state`, each checked against the Coulomb bounds
+/// (open: no force; closed: N > 0 and |F_t| <= mu N; slipping: |F_t| = mu N).
+fn coulomb_counts(m: &FineModel, state: &ModelState, mu: f64) -> (usize, usize) {
     let mut loads = m.load_buffers();
-    m.compute_loads(&state, 1.0, &mut loads);
+    m.compute_loads(state, 1.0, &mut loads);
     let (mut closed, mut slipping) = (0, 0);
     for c in loads.iter().flat_map(|l| &l.contacts) {
         let ft = c.tangential_force.norm();
@@ -266,21 +284,43 @@ fn friction_bending_step_of_1x19_converges_within_the_coulomb_bounds() {
             }
         }
     }
-    let k = p.secant_stiffness();
+    (closed, slipping)
+}
+
+/// The path of `strand bend examples/steel-1x19-swing.json --tension 100 --curvatures
+/// 0.0125,0.05,-0.05,0.05 --pitches 3 --segments-per-pitch 8` (mu = 0.3, the default contacts:
+/// one point per segment on the core) runs to its end, every point's contacts within the
+/// Coulomb bounds and its secant stiffness `M / kappa` between the closed forms K_min (all
+/// slip, Costello) and K_max (plane sections). With the end plate held at the strain T / EA_eq
+/// instead of the axial force at the tension (`BendingTest::hold_tension` switched off) the
+/// first step stalls at 9.77e-3 1/m (scaled residual 1.5e-3 after six halvings); the softest
+/// modes of the tangent there are not the first layer's segments rocking on their single core
+/// contact (Multilayer page, "The stick regime of the default contacts").
+#[test]
+fn friction_bending_path_of_1x19_at_8_segments_per_pitch_finishes() {
+    let s = strand_1x19(1.0, false);
+    let mu = s.spec().friction;
+    let mut test = BendingTest::frictionless(3, 8, 100.0, 0.0125);
+    test.friction = mu;
+    test.curvatures = vec![0.0125, 0.05, -0.05, 0.05];
     let (k_min, k_max) = (
         s.min_bending_stiffness(BaseStiffness::Costello),
         s.max_bending_stiffness(BaseStiffness::Costello),
     );
-    println!(
-        "kappa {:.4e} 1/m in {} Newton iterations: {closed} contacts closed, {slipping} \
-         slipping; M / kappa = {k:.4e} N m^2 = {:.4} K_min, {:.4} K_max",
-        p.curvature,
-        p.iterations,
-        k / k_min,
-        k / k_max
-    );
-    assert!(closed > 0 && slipping > 0 && slipping < closed);
-    assert!(k_min < k && k < k_max, "{k} outside [{k_min}, {k_max}]");
+    let mut points = 0;
+    let (curve, _, _) = test
+        .run_observed(&s, &mut |p, m, state| {
+            let (closed, slipping) = coulomb_counts(m, state, mu);
+            if p.imposed_curvature != 0.0 {
+                let k = p.secant_stiffness();
+                assert!(k_min < k && k < k_max, "{k} outside [{k_min}, {k_max}]");
+                assert!(closed > 0 && slipping > 0);
+                points += 1;
+            }
+        })
+        .expect("the 8-segment path");
+    assert_eq!(points, 4);
+    assert_eq!(curve.last().unwrap().imposed_curvature, 0.05);
 }
 
 /// The assembled tangent with the wire-to-wire links (central differences of each link's
