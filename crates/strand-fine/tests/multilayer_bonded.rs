@@ -59,7 +59,8 @@ fn env(k: &str, d: f64) -> f64 {
 /// All-stick bending of the 1+6+12 strand with the idealisations from the environment:
 /// MU, STRAIN (axial), BEND (kappa R_2), SPP, PITCHES, PEN (penetration rule at that
 /// fraction of d), RELIEF (strain-relief rule), STICK_LOSS, POINTS, WSHEAR, WTORSION, CSHEAR,
-/// AXES (1: bond on the first layer's axes), SAME (1: outer layer right-laid).
+/// AXES (1: bond on the first layer's axes), SAME (1: outer layer right-laid), PSTAGES (penalty
+/// continuation stages of every load step).
 #[test]
 #[ignore = "exploration: settings from the environment"]
 fn probe_bonded_1x19() {
@@ -76,6 +77,7 @@ fn probe_bonded_1x19() {
     );
     test.friction = env("MU", 1e3);
     test.max_halvings = env("HALVINGS", 3.0) as usize;
+    test.statics.penalty_stages = env("PSTAGES", 0.0) as usize;
     let pen = env("PEN", 0.0);
     if pen > 0.0 {
         test.contact.normal_penalty = NormalPenalty::Penetration;
