@@ -287,3 +287,54 @@ fn default_contacts_converge_in_the_stick_regime() {
         assert!((k / rod - 1.0).abs() < 0.05, "{k} against {rod}");
     }
 }
+
+/// The 1+6+12 strand with the compliances the plane-section K_max ignores removed (wires'
+/// G J x100 and kappa G A x10, core's kappa G A x100, the first layer's bond on its axes, stiff
+/// penalties; `cargo xtask bonded --multilayer`'s `removed`) at `spp` segments per pitch.
+fn removed_1x19(spp: usize) -> (Strand, BendingTest) {
+    let s = strand_1x19(false);
+    let tension = 2.2e-4 * s.axial_stiffness();
+    let mut test = BendingTest::frictionless(3, spp, tension, 2.5e-5 / s.layers()[1].radius);
+    test.friction = 1e3;
+    test.contact.normal_penalty = NormalPenalty::StrainRelief(1e-4);
+    test.contact.stick_loss = 5e-4;
+    test.contact.contact_radius = Some(s.layers()[0].radius);
+    test.wire_springs = SpringScale {
+        torsion: 100.0,
+        shear: 10.0,
+        ..Default::default()
+    };
+    test.core_springs = SpringScale {
+        shear: 100.0,
+        ..Default::default()
+    };
+    (s, test)
+}
+
+/// A tension step that plain Newton does not solve is retried with penalty continuation,
+/// which changes only the first iterate: on the compliance-free 1+6+12 strand at 20 segments
+/// per pitch the tension step fails without a retry (Newton's iterates cross the stiff
+/// contacts' kinks: scaled residual 2.0 after 60 iterations) and passes with it, every
+/// contact sticking; at 16 segments per pitch, where plain Newton converges, two stages of
+/// continuation on every step give the same stiffness within 1e-6 (the steps' residual
+/// tolerance is 1e-8 of the tension). With a failed tension step retried as before (the
+/// same solve again, its zero curvature increment halved) the first check fails.
+#[test]
+fn a_failed_tension_step_is_retried_with_penalty_continuation() {
+    let (s, mut test) = removed_1x19(20);
+    test.max_halvings = 0;
+    match test.run(&s) {
+        Err(strand_fine::BendingError::Static { curvature, .. }) => assert_eq!(curvature, 0.0),
+        other => panic!("plain Newton solved the tension step: {other:?}"),
+    }
+    test.max_halvings = 3;
+    let curve = test.run(&s).expect("retried tension step");
+    assert_eq!(curve[1].slip, 0);
+    assert_eq!(curve[1].stick, curve[0].stick);
+    let (s, mut test) = removed_1x19(16);
+    test.max_halvings = 0;
+    let plain = test.run(&s).expect("plain Newton")[1].secant_stiffness();
+    test.statics.penalty_stages = 2;
+    let staged = test.run(&s).expect("penalty continuation")[1].secant_stiffness();
+    assert!((staged / plain - 1.0).abs() < 1e-6, "{staged} against {plain}");
+}
