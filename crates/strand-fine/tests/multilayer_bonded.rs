@@ -211,7 +211,8 @@ fn probe_rod_models() {
 /// the contacts closed under the tension alone stay closed, and M / kappa meets the rod model
 /// of the strand as one body (`strand_bonded_stiffness`, rigid bonds) within the 5 % asked of
 /// the closed form plus the mesh error of 16 segments per pitch: 1.5 %, measured by `cargo
-/// xtask bonded --multilayer` (0.3750 K_max at 16 against 0.3705 at 32 and 0.3702 at 40). The
+/// xtask bonded --multilayer`'s `stiff-penalties` (0.3747 K_max at 16 against 0.3703 at 32
+/// and 0.3701 at 40). The
 /// per-interface stick factors of the law (0.928 K_max) are printed beside it. With the
 /// mirror's sign left out of the one-body model (a left-laid layer's e_theta not reversed)
 /// the model gives 0.669 K_max and this check fails.
@@ -336,5 +337,8 @@ fn a_failed_tension_step_is_retried_with_penalty_continuation() {
     let plain = test.run(&s).expect("plain Newton")[1].secant_stiffness();
     test.statics.penalty_stages = 2;
     let staged = test.run(&s).expect("penalty continuation")[1].secant_stiffness();
-    assert!((staged / plain - 1.0).abs() < 1e-6, "{staged} against {plain}");
+    assert!(
+        (staged / plain - 1.0).abs() < 1e-6,
+        "{staged} against {plain}"
+    );
 }
