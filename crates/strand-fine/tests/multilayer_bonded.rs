@@ -58,7 +58,7 @@ fn env(k: &str, d: f64) -> f64 {
 
 /// All-stick bending of the 1+6+12 strand with the idealisations from the environment:
 /// MU, STRAIN (axial), BEND (kappa R_2), SPP, PITCHES, PEN (penetration rule at that
-/// fraction of d), RELIEF (strain-relief rule), STICK_LOSS, POINTS, WSHEAR, WTORSION, CSHEAR,
+/// fraction of d), RELIEF (strain-relief rule), STICK_LOSS, POINTS, WSHEAR, WTORSION, WBEND, CSHEAR,
 /// AXES (1: bond on the first layer's axes), SAME (1: outer layer right-laid), PSTAGES (penalty
 /// continuation stages of every load step).
 #[test]
@@ -95,6 +95,7 @@ fn probe_bonded_1x19() {
     test.wire_springs = SpringScale {
         shear: env("WSHEAR", 1.0),
         torsion: env("WTORSION", 1.0),
+        bending: env("WBEND", 1.0),
         ..Default::default()
     };
     test.core_springs = SpringScale {
