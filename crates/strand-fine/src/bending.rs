@@ -47,7 +47,9 @@ pub struct BendingTest {
     pub friction: f64,
     /// Static solver controls for each load step.
     pub statics: StaticOptions,
-    /// Times a failed load step's curvature increment may be halved.
+    /// Times a failed load step may be retried: with half its curvature increment, or, for
+    /// the tension step (no curvature increment to halve), with one more stage of penalty
+    /// continuation ([`StaticOptions::penalty_stages`]) than the try before.
     pub max_halvings: usize,
     /// Factors on the core's joint springs (all 1: the physical core).
     pub core_springs: SpringScale,
@@ -77,7 +79,8 @@ impl BendingTest {
     /// scales only the sheave pressure, not the end plate's motion, and a split would commit
     /// the contact histories at a fraction of the pressure the arc needs (a load path the
     /// test does not impose). A step that fails is retried by the test with half its
-    /// curvature increment ([`BendingTest::max_halvings`]).
+    /// curvature increment, the tension step with penalty continuation
+    /// ([`BendingTest::max_halvings`]).
     pub fn load_step_statics(force_scale: f64) -> StaticOptions {
         StaticOptions {
             load_steps: 1,
@@ -416,7 +419,11 @@ impl BendingTest {
         let hold_tension = one_layer.is_none();
         let mut out = Vec::new();
         let steps = std::iter::once(0.0).chain(self.curvatures.iter().copied());
+        // The test whose statics the load steps use: a retried step with no curvature
+        // increment raises its penalty continuation, for that step only.
+        let mut test = self.clone();
         for kappa in steps {
+            test.statics = self.statics;
             // Reach `kappa` from the last converged curvature, halving the increment when a
             // load step fails (stick-slip changes of many contacts at once).
             let mut iterations = 0;
@@ -431,7 +438,7 @@ impl BendingTest {
                 };
                 let saved = (state.clone(), map);
                 let saved_eps = eps;
-                let stepped = self
+                let stepped = test
                     .step_to(
                         &mut model,
                         &mut state,
@@ -449,7 +456,7 @@ impl BendingTest {
                         if !hold_tension {
                             return Ok(it);
                         }
-                        let held = self.hold_tension(
+                        let held = test.hold_tension(
                             &mut model,
                             &mut state,
                             &mut map,
@@ -474,7 +481,15 @@ impl BendingTest {
                         if halvings > self.max_halvings {
                             return Err(error);
                         }
-                        increment *= 0.5;
+                        if increment == 0.0 {
+                            // The tension step: nothing to halve; its Newton iterates
+                            // cross the stiff contacts' kinks (the penalty continuation's
+                            // case, `crate::statics`), so the retry starts each solve from
+                            // softer penalties.
+                            test.statics.penalty_stages += 1;
+                        } else {
+                            increment *= 0.5;
+                        }
                     }
                 }
             }

@@ -49,7 +49,7 @@ pub struct BondedArgs {
     #[arg(long)]
     pub multilayer: bool,
     /// Only this variant (e.g. `physical`, `removed`; `curve`: only the moment-curvature
-    /// curves with friction; with `--multilayer` also `wire-torsion`, `default-penalties`,
+    /// curves with friction; with `--multilayer` also `wire-torsion`, `stiff-penalties`,
     /// ...).
     #[arg(long, value_name = "NAME")]
     pub variant: Option<String>,

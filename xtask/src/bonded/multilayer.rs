@@ -5,9 +5,10 @@
 //! The fine model's virtual bending test with friction too high to slip (mu = 1e3; checked:
 //! no contact slips and none opens or closes between the tension step and the bend) measures
 //! M / kappa at 16, 32 and 40 segments per pitch (Richardson limit from the observed order) for
-//! the judged variants, at 16 and 32 for the others (the last change as their error).
+//! the physical strand (the bending test's default contacts), the stiff penalties and the
+//! compliance-free strand, at 16 and 32 for the others (the last change as their error).
 //! Each variant removes one compliance the plane-section K_max ignores: the contacts'
-//! penalties (the stiff variants against the default ones), the wires' torsion and shear, the
+//! penalties (every other variant has stiff ones), the wires' torsion and shear, the
 //! core's shear, the eccentricity of the first layer's bond on the core. Beside each stands
 //! the rod model of the whole strand as one body (`strand_core::bonded::
 //! strand_bonded_stiffness`: every layer's wires as Cosserat rods, each layer bonded to the
@@ -33,11 +34,9 @@ use super::Limit;
 use crate::validate::repo_root;
 use crate::validate::report::{Bound, Row};
 
-/// Segments per pitch of the judged refinement. Below 16 the outer layer's segments (11.4 mm
-/// at 16) are longer than the distance between its crossings (13.5 mm) and a link can miss
-/// one: 8 segments per pitch gives 0.68 K_max against 0.375 at 16. With the stiff penalties
-/// the tension step does not converge at 24 (scaled residual 1.8), and 40 takes minutes on a
-/// loaded machine where 32 takes seconds.
+/// Segments per pitch of the refinement with an observed order. Below 16 the outer layer's
+/// segments (11.4 mm at 16) are longer than the distance between its crossings (13.5 mm) and
+/// a link can miss one: 8 segments per pitch gives 0.68 K_max against 0.375 at 16.
 pub const MESHES: [usize; 3] = [16, 32, 40];
 /// Segments per pitch of the reported variants: the last change is their error estimate.
 pub const REPORTED_MESHES: [usize; 2] = [16, 32];
@@ -91,17 +90,17 @@ struct Variant {
     what: &'static str,
     core: SpringScale,
     wire: SpringScale,
-    /// Stiff penalties (strain relief 1e-4, stick loss 5e-4) or the defaults.
+    /// Stiff penalties (strain relief 1e-4, stick loss 5e-4) or the bending test's defaults.
     stiff: bool,
     /// The first layer's bond on its wires' axes.
     axes: bool,
-    /// Whether the refinement is judged (the physical and the compliance-free strand, on
-    /// [`MESHES`]; the others on [`REPORTED_MESHES`]).
+    /// Whether the refinement is judged (the physical and the compliance-free strand).
     judged: bool,
+    /// Refined on [`MESHES`] with an observed order (else on [`REPORTED_MESHES`]).
+    refined: bool,
     /// Run only when named by `--variant`: the wires' shear alone (over 11 minutes at 32
-    /// segments per pitch on the loaded 2-core machine) and the core's shear alone (its
-    /// tension step does not converge at 16 segments per pitch, scaled residual 0.28); both
-    /// are part of `removed`.
+    /// segments per pitch on the loaded 2-core machine) and the core's shear alone; both are
+    /// part of `removed`.
     on_request: bool,
 }
 
@@ -114,6 +113,7 @@ fn variant(name: &'static str, what: &'static str) -> Variant {
         stiff: true,
         axes: false,
         judged: false,
+        refined: false,
         on_request: false,
     }
 }
@@ -135,8 +135,14 @@ fn shear(f: f64) -> SpringScale {
 /// The variants; `quick`: the physical and the compliance-free strand only.
 fn variants(quick: bool) -> Vec<Variant> {
     let physical = Variant {
+        stiff: false,
         judged: true,
-        ..variant("physical", "real wires and core, stiff penalties")
+        refined: true,
+        ..variant(
+            "physical",
+            "real wires and core, the bending test's default contacts (strain relief 1e-2, \
+             stick loss 0.05)",
+        )
     };
     let removed = Variant {
         wire: SpringScale {
@@ -147,6 +153,7 @@ fn variants(quick: bool) -> Vec<Variant> {
         core: shear(100.0),
         axes: true,
         judged: true,
+        refined: true,
         ..variant(
             "removed",
             "wires' G J x100 and kappa G A x10, first layer's bond on its axes, core shear x100",
@@ -158,10 +165,10 @@ fn variants(quick: bool) -> Vec<Variant> {
     vec![
         physical,
         Variant {
-            stiff: false,
+            refined: true,
             ..variant(
-                "default-penalties",
-                "the model's default penalties (strain relief 1e-2, stick loss 0.05)",
+                "stiff-penalties",
+                "real wires and core, stiff penalties (strain relief 1e-4, stick loss 5e-4)",
             )
         },
         Variant {
@@ -236,8 +243,9 @@ fn options(strand: &Strand, v: &Variant) -> BondedOptions {
 fn bending_test(strand: &Strand, v: &Variant, spp: usize) -> BendingTest {
     let outer = strand.layers().last().expect("a helical layer");
     let tension = STRAIN * strand.axial_stiffness();
+    // The bending test's default contacts (one point per segment on the core on several
+    // layers), with the variant's bond radius and penalties.
     let mut contact = ContactOptions {
-        points_per_segment: Some(1),
         contact_radius: v.axes.then(|| strand.layers()[0].radius),
         ..Default::default()
     };
@@ -283,7 +291,7 @@ fn study(strand: &Strand, v: &Variant) -> anyhow::Result<Measured> {
     let t = Instant::now();
     let mut fine = Vec::new();
     let mut clamp_ratio = 0.0;
-    let meshes: &[usize] = if v.judged { &MESHES } else { &REPORTED_MESHES };
+    let meshes: &[usize] = if v.refined { &MESHES } else { &REPORTED_MESHES };
     for &spp in meshes {
         let (k, c) = measure(strand, &bending_test(strand, v, spp))
             .with_context(|| format!("{spp} segments per pitch"))?;
@@ -294,7 +302,7 @@ fn study(strand: &Strand, v: &Variant) -> anyhow::Result<Measured> {
         fine.push(k);
         clamp_ratio = c;
     }
-    let (order, limit, limit_error) = if v.judged {
+    let (order, limit, limit_error) = if v.refined {
         extrapolate(&MESHES, &fine)
     } else {
         (None, fine[1], ((fine[1] - fine[0]) / fine[1]).abs())
