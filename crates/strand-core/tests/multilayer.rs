@@ -8,7 +8,7 @@ use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
 use strand_core::{
     LawKind, LayDirection, LayerSpec, Material, SectionLaw, SectionOptions, SectionResponse,
-    SlipPressure, Station, Strand, StrandSpec, WireSpec,
+    SlipPressure, Station, StickStiffness, Strand, StrandSpec, WireSpec,
 };
 
 /// The most wires of diameter `d` that fit side by side on the helix radius `r` at lay angle
@@ -26,6 +26,11 @@ fn most_wires(d: f64, r: f64, a: f64) -> usize {
 /// a share of the wires that fit, a lay angle, a lay direction, a phase and a modulus ratio
 /// (steel on aluminium and the reverse); one friction coefficient.
 fn multilayer() -> impl Strategy<Value = Strand> {
+    strands(1..=4)
+}
+
+/// A random valid strand with `layers` helical layers, drawn as [`multilayer`] draws them.
+fn strands(layers: std::ops::RangeInclusive<usize>) -> impl Strategy<Value = Strand> {
     (
         (0.5e-3..4e-3f64, 9.5..11.5f64, 0.05..1.0f64),
         prop::collection::vec(
@@ -37,7 +42,7 @@ fn multilayer() -> impl Strategy<Value = Strand> {
                 -PI..PI,
                 0.3..3.0f64,
             ),
-            1..=4,
+            layers,
         ),
     )
         .prop_filter_map("layers that do not fit", |((dc, loge, mu), raw)| {
@@ -498,6 +503,58 @@ proptest! {
                 prop_assert!(stored.abs() <= round,
                     "stored energy {} -> {}", start.energy, prev.energy);
             }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// On a strand of one layer (1+m) every `section.slip_pressure` and the stick stiffnesses
+    /// `bonded` and `one_body` give the same law, bit for bit, so that the defaults of the two
+    /// options cannot move a 1+m result: nothing lies outside the layer to press it, and the
+    /// one-body share of a lone layer is its interface's factor. Checked on both the planar and
+    /// the vector law along a path that loads past full slip (up to 30 times the smallest
+    /// first-slip scale), reverses and reloads, committing each step's slip state.
+    #[test]
+    fn one_layer_law_is_the_same_under_every_pressure_and_stick_stiffness(
+        s in strands(1..=1), kind in kinds(), eps in 0.0..2e-3f64, x in 0.0..1.0f64,
+        logu in -0.5..1.5f64, turn in 0.0..PI,
+    ) {
+        let laws: Vec<SectionLaw> = SlipPressure::ALL
+            .iter()
+            .flat_map(|&slip_pressure| {
+                [StickStiffness::Bonded, StickStiffness::OneBody].map(|stick_stiffness| {
+                    let options = SectionOptions {
+                        slip_pressure,
+                        stick_stiffness,
+                        ..Default::default()
+                    };
+                    SectionLaw::with_options(&s, kind, &options)
+                })
+            })
+            .collect();
+        let amplitude = 10f64.powf(logu) * curvature_scale(&s, eps);
+        let n = 24;
+        let path = |law: &SectionLaw| {
+            let st = law.station(x);
+            let (mut planar, mut vector) = (vec![0.0; law.state_len()], vec![0.0; law.state_len()]);
+            let mut trial = planar.clone();
+            let mut out = Vec::with_capacity(2 * n);
+            for i in 1..=2 * n {
+                let k = amplitude * (PI * i as f64 / n as f64).sin();
+                let r = law.planar(&st, eps, k, &planar, &mut trial);
+                planar.copy_from_slice(&trial);
+                let kv = [k * turn.cos(), k * turn.sin()];
+                let v = law.vector(&st, eps, kv, &vector, &mut trial);
+                vector.copy_from_slice(&trial);
+                out.push((r, v));
+            }
+            (law.stick_bending_stiffness(), law.state_len(), out)
+        };
+        let first = path(&laws[0]);
+        for (i, law) in laws.iter().enumerate().skip(1) {
+            prop_assert!(path(law) == first, "{kind}: variant {i} differs");
         }
     }
 }

@@ -88,9 +88,9 @@ pub struct SectionFile {
     /// (22b) as printed).
     #[serde(default)]
     pub slip_limit: Option<String>,
-    /// The contact pressure that sets each layer's friction limit: `accumulated` (default;
-    /// the wire's own tension plus what the layers outside press down, with their exact wire
-    /// counts and radii), `sc5` (the same with close-packed layers), `two_faces` (friction on
+    /// The contact pressure that sets each layer's friction limit: `accumulated` (the wire's
+    /// own tension plus what the layers outside press down, with their exact wire counts and
+    /// radii), `sc5` (the same with close-packed layers), `two_faces` (default; friction on
     /// both faces of a layer under others: the load from outside counted twice) or
     /// `own_layer` (the wire's own tension only, the capstan law of every layer). A strand of
     /// one layer has the same law under every choice.

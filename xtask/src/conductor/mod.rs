@@ -114,6 +114,7 @@ pub fn run(args: &ConductorArgs) -> anyhow::Result<()> {
         SlipPressure::Accumulated,
         SlipPressure::Sc5,
         SlipPressure::OwnLayer,
+        SlipPressure::TwoFaces,
     ] {
         let json = scene_json.clone();
         models.push((
@@ -171,18 +172,23 @@ pub fn run(args: &ConductorArgs) -> anyhow::Result<()> {
         .collect();
 
     // The law's curve at twice the load steps: the step's effect on the figures.
+    let default = SlipPressure::default();
     let fine = loading_moments(
-        &law_at(&scene_json, SlipPressure::Accumulated, LITERATURE_FRICTION)?,
+        &law_at(&scene_json, default, LITERATURE_FRICTION)?,
         TENSION,
         &measured.curvature,
         2 * SUBSTEPS,
     );
+    let default_row = rows
+        .iter()
+        .find(|r| !r.fitted && r.name == format!("law, {default}"))
+        .expect("the default pressure is among the law's rows");
     let step_effect = fine
         .iter()
-        .zip(&rows[0].moments)
+        .zip(&default_row.moments)
         .fold(0.0_f64, |a, (x, y)| a.max((x - y).abs()));
 
-    let law = law_at(&scene_json, SlipPressure::Accumulated, LITERATURE_FRICTION)?;
+    let law = law_at(&scene_json, default, LITERATURE_FRICTION)?;
     let text = report(
         &measured,
         &rows,
@@ -250,7 +256,7 @@ fn report(
         s,
         "Cardinal ACSR 54/7 (`{SCENE}`: core {:.2} mm; layers {}) at T = {} kN, the {} measured \
          points of `{MEASURED}` (largest moment {:.2} N m, initial secant M_1 / kappa_1 = {:.0} N m^2). \
-         The law (`hysteretic`, default section options): K_min = {:.1} N m^2, stick stiffness \
+         The law (`hysteretic`, default section options, `{}`): K_min = {:.1} N m^2, stick stiffness \
          {:.0} N m^2. The classical models: K_min = {:.1} N m^2 (Papailiou), K_max = {:.0} N m^2 \
          (plane section), strain T / EA = {:.3e}. Targets: RMS within {:.0} % of the largest measured moment and the \
          initial secant within {:.0} % of the measured one, with one friction coefficient. The \
@@ -264,6 +270,7 @@ fn report(
         measured.len(),
         measured.largest_moment(),
         measured.initial_secant(),
+        SlipPressure::default(),
         law.base_bending_stiffness(),
         law.stick_bending_stiffness(),
         conductor.k_min(),
@@ -328,7 +335,7 @@ fn report(
         .iter()
         .filter(|r| {
             (r.name.starts_with("law") || r.name.contains("SC1") || r.name.contains("accumulated"))
-                && (!r.fitted || r.name == "law, accumulated")
+                && (!r.fitted || r.name == format!("law, {}", SlipPressure::default()))
         })
         .collect();
     let head: Vec<String> = shown
@@ -398,12 +405,12 @@ fn draw(
         let mut series = Vec::new();
         let picks = [
             ("law, accumulated", false, Mark::Line, 0),
-            ("law, sc5", false, Mark::Line, 5),
+            ("law, two_faces", false, Mark::Line, 5),
             ("law, own_layer", false, Mark::Line, 1),
             ("classical, SC1 (Papailiou)", false, Mark::Dashed, 3),
             ("classical, accumulated", false, Mark::Dashed, 2),
             ("classical, Foti", false, Mark::Dashed, 6),
-            ("law, accumulated", true, Mark::Dashed, 4),
+            ("law, two_faces", true, Mark::Dashed, 4),
         ];
         for (name, fitted, mark, color) in picks {
             let r = rows

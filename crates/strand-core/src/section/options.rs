@@ -19,8 +19,9 @@ pub struct SectionOptions {
     /// capstan gain from the nearest neutral-axis crossing on the axial projection cos(alpha)).
     pub slip_limit: SlipLimit,
     /// The contact pressure that sets each layer's friction limit (`section.slip_pressure`;
-    /// default the accumulated pressure of the layers outside, module `pressure`). A strand
-    /// of one layer has the same law under every choice.
+    /// default `two_faces`, the accumulated pressure of the layers outside on both faces of a
+    /// layer under others, module `pressure`). A strand of one layer has the same law under
+    /// every choice.
     pub slip_pressure: SlipPressure,
     /// Whether K_min follows the axial strain (`section.base_tension`; default `fixed`, the
     /// tension-free value; module `base_tension`).

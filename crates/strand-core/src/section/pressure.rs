@@ -20,7 +20,7 @@
 //! ```
 //!
 //! The SC5 form replaces the layer's n_k / R_k by its close-packing value pi / r_wk (and
-//! R_j / n_j by r_wj / pi); the exact n_k / R_k is the better choice and the default. The
+//! R_j / n_j by r_wj / pi); the exact n_k / R_k is the better choice. The
 //! layers' tensions at theta = 0 are the wires' tensions from the strand's strain, F_k = E_k A_k
 //! cos^2(alpha_k) eps, so the solution is proportional to eps and its gain G_j(theta) =
 //! (T_j(theta) - F_j) / F_j depends on theta alone: the section laws keep their form, with the
@@ -50,7 +50,10 @@
 //! wire), friction acts on both faces: mu times the own line load plus twice the load from
 //! outside, the accumulated a_jk doubled. The fine 1+6+12 bending test measures this on the
 //! inner layer (`multilayer.md`, "Which layer carries the excess"). The outermost layer has one
-//! face in contact and keeps the capstan gain.
+//! face in contact and keeps the capstan gain. It is the default: the fine model's converged
+//! bending tests with friction (1+6+12 strand, ACSR section) follow it on loading where the
+//! one-face `accumulated` limit lies 6-18 % low (`multilayer.md`, "Which layer
+//! carries the excess").
 //!
 //! Where the contact type enters: the line load is the same total force whether a layer
 //! touches the one beneath along lines or at crossing points, so the friction limit per unit
@@ -78,16 +81,16 @@ pub enum SlipPressure {
     /// Each wire's own tension only: the capstan gain exp(mu theta sin(alpha)) - 1 of every
     /// layer (SC1).
     OwnLayer,
-    /// Own tension plus the layers outside, with their exact n_k / R_k. The default: a layer
+    /// Own tension plus the layers outside, with their exact n_k / R_k, on one face: a layer
     /// under others is pressed by them (without it an inner layer of a conductor slips at the
     /// curvature of a lone layer), and this is the line load of the strand as built.
-    #[default]
     Accumulated,
     /// Own tension plus the layers outside with the close-packing n_k / R_k = pi / r_wk (SC5).
     Sc5,
     /// Own tension plus twice the layers outside (exact n_k / R_k): friction on the inner face
     /// (own tension plus the load from outside) and on the outer face (the load from outside),
-    /// for a layer that slips against both its neighbours (module docs).
+    /// for a layer that slips against both its neighbours (module docs). The default.
+    #[default]
     TwoFaces,
 }
 
