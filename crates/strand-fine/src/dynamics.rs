@@ -140,6 +140,12 @@ pub struct Integrator {
     /// Contacts evaluated by the thread that does not own their wire in a split sweep
     /// ([`crate::sweep_split`]).
     lent: Vec<ContactLoad>,
+    /// Whether [`Integrator::advance`] with more than one thread splits its sweeps between
+    /// the calling thread and one partner thread (else rayon's pool takes them). Off unless
+    /// the environment sets `STRAND_SPLIT_SWEEPS=1` when the integrator is made: the split
+    /// is measured faster than rayon's sweeps only on a heavily loaded machine so far. The
+    /// numbers are the same either way.
+    pub split_sweeps: bool,
     /// The split of the sweeps between two threads, kept and rebalanced from one
     /// [`Integrator::advance`] to the next.
     split: Option<SweepSplit>,
@@ -160,6 +166,7 @@ impl Integrator {
             loads,
             frames,
             lent: Vec::new(),
+            split_sweeps: std::env::var("STRAND_SPLIT_SWEEPS").is_ok_and(|v| v == "1"),
             split: None,
         }
     }
@@ -188,8 +195,9 @@ impl Integrator {
     /// wires per step instead of four: the commit of a step's contact histories, its second
     /// half kick (and damping), the first half kick and drift of the next and the segments'
     /// frames at the new poses are one sweep, the loads the other. With one thread in
-    /// rayon's pool the sweeps run in the calling thread (`sweep` module); with more, a
-    /// stretch of at least 8 steps runs on the calling thread and one partner thread, each
+    /// rayon's pool the sweeps run in the calling thread (`sweep` module); with more and
+    /// [`Integrator::split_sweeps`] on, a stretch of at least 8 steps runs on the calling
+    /// thread and one partner thread, each
     /// sweep split between them by cost and the two meeting at a spinning barrier
     /// (`sweep_split` and `spin_barrier` modules), and a shorter one on one of the pool's
     /// threads, its sweeps over the pool. The numbers are the same, bit for bit, on any
@@ -203,11 +211,13 @@ impl Integrator {
     ) {
         if !sweep::parallel() {
             self.advance_on(model, state, steps, load_factor, false);
-        } else if let Some(split) = self
-            .split
-            .filter(|s| s.owned < model.wires.len())
-            .or_else(|| SweepSplit::new(model))
-            .filter(|_| steps >= SPLIT_MIN_STEPS)
+        } else if let Some(split) = (self.split_sweeps && steps >= SPLIT_MIN_STEPS)
+            .then(|| {
+                (self.split)
+                    .filter(|s| s.owned < model.wires.len())
+                    .or_else(|| SweepSplit::new(model))
+            })
+            .flatten()
         {
             let busy = self.advance_split(model, state, steps, load_factor, &split);
             let mut split = split;

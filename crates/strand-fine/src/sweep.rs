@@ -5,7 +5,7 @@
 //! (the calling thread is not one of the pool's: it queues the work and blocks on a latch).
 //! With one thread the sweeps run in the calling thread instead. A stretch of steps
 //! ([`crate::Integrator::advance`] of at least [`crate::sweep_split::SPLIT_MIN_STEPS`] steps)
-//! with more than one thread runs on the calling thread and one partner thread instead,
+//! with more than one thread and [`crate::Integrator::split_sweeps`] on runs on the calling thread and one partner thread instead,
 //! each sweep split between them by cost ([`crate::sweep_split`]). Each wire's work is the
 //! same arithmetic either way and every sum across wires is taken in a fixed order after the
 //! sweep, so the results do not depend on the choice (the thread-count tests of

@@ -1,5 +1,5 @@
 //! The steps split between two threads (`Integrator::advance` with more than one thread in
-//! rayon's pool: the calling thread and one partner, each sweep split by cost, contacts of
+//! rayon's pool and `split_sweeps` on: the calling thread and one partner, each sweep split by cost, contacts of
 //! one wire lent to the other thread) give the same numbers, bit for bit, as the steps in
 //! one thread: states, committed histories, friction loss, loads and energies. On a
 //! one-layer strand with ties (a pinned end binds the wires to the core) and on a 1+6+12
@@ -84,6 +84,7 @@ fn run(
         let dt = stable_time_step(m, &s, 0.9);
         let ramp = move |t: f64| (t / (300.0 * dt)).min(1.0);
         let mut int = Integrator::new(m, &s, dt);
+        int.split_sweeps = true;
         int.damping_rate = 30.0;
         int.load_factor = 0.0;
         int.reload(m, &s);
