@@ -12,16 +12,10 @@
 use nalgebra::{Matrix3, SMatrix, Vector3};
 use rayon::prelude::*;
 
-use std::sync::{Mutex, RwLock};
-use std::time::Instant;
-
-use crate::contact::{ContactHistory, ContactLoad};
-use crate::model::LoadSlots;
+use crate::contact::ContactHistory;
 use crate::model::{Energies, FineModel, ModelState, Wire, WireLoads, WireState, update_frames};
 use crate::segment::Frame;
-use crate::spin_barrier::{BreakOnPanic, SpinBarrier};
 use crate::sweep;
-use crate::sweep_split::{SPLIT_MIN_STEPS, SplitLoads, SweepSplit};
 
 /// `B = M^{-1/2}` block by block at `state`, one 6 x 6 block per segment: `m^{-1/2} I` on its
 /// translations (kg^-1/2) and `R I^{-1/2} R^T` on its rotations (kg^-1/2 m^-1; the world
@@ -137,18 +131,6 @@ pub struct Integrator {
     /// Every segment's frame after the last drift of [`Integrator::advance`] (one list per
     /// wire), for the loads of the step.
     frames: Vec<Vec<Frame>>,
-    /// Contacts evaluated by the thread that does not own their wire in a split sweep
-    /// ([`crate::sweep_split`]).
-    lent: Vec<ContactLoad>,
-    /// Whether [`Integrator::advance`] with more than one thread splits its sweeps between
-    /// the calling thread and one partner thread (else rayon's pool takes them). Off unless
-    /// the environment sets `STRAND_SPLIT_SWEEPS=1` when the integrator is made: the split
-    /// is measured faster than rayon's sweeps only on a heavily loaded machine so far. The
-    /// numbers are the same either way.
-    pub split_sweeps: bool,
-    /// The split of the sweeps between two threads, kept and rebalanced from one
-    /// [`Integrator::advance`] to the next.
-    split: Option<SweepSplit>,
 }
 
 impl Integrator {
@@ -165,9 +147,6 @@ impl Integrator {
             damping_rate: 0.0,
             loads,
             frames,
-            lent: Vec::new(),
-            split_sweeps: std::env::var("STRAND_SPLIT_SWEEPS").is_ok_and(|v| v == "1"),
-            split: None,
         }
     }
 
@@ -194,14 +173,10 @@ impl Integrator {
     /// `steps` calls of [`Integrator::step`] with those load factors, in two sweeps over the
     /// wires per step instead of four: the commit of a step's contact histories, its second
     /// half kick (and damping), the first half kick and drift of the next and the segments'
-    /// frames at the new poses are one sweep, the loads the other. With one thread in
-    /// rayon's pool the sweeps run in the calling thread (`sweep` module); with more and
-    /// [`Integrator::split_sweeps`] on, a stretch of at least 8 steps runs on the calling
-    /// thread and one partner thread, each
-    /// sweep split between them by cost and the two meeting at a spinning barrier
-    /// (`sweep_split` and `spin_barrier` modules), and a shorter one on one of the pool's
-    /// threads, its sweeps over the pool. The numbers are the same, bit for bit, on any
-    /// number of threads.
+    /// frames at the new poses are one sweep, the loads the other. The sweeps run in
+    /// parallel when rayon's pool has more than one thread, else in the calling thread
+    /// (`sweep` module), and in parallel all `steps` run on one of the pool's threads; the
+    /// numbers are the same either way.
     pub fn advance(
         &mut self,
         model: &FineModel,
@@ -209,174 +184,13 @@ impl Integrator {
         steps: u64,
         load_factor: &(dyn Fn(f64) -> f64 + Sync),
     ) {
-        if !sweep::parallel() {
-            self.advance_on(model, state, steps, load_factor, false);
-        } else if let Some(split) = (self.split_sweeps && steps >= SPLIT_MIN_STEPS)
-            .then(|| {
-                (self.split)
-                    .filter(|s| s.owned < model.wires.len())
-                    .or_else(|| SweepSplit::new(model))
-            })
-            .flatten()
-        {
-            let busy = self.advance_split(model, state, steps, load_factor, &split);
-            let mut split = split;
-            split.rebalance(model, busy, steps);
-            self.split = Some(split);
-        } else {
+        if sweep::parallel() {
             // On one of the pool's threads: the sweeps' halves are handed to the other
             // threads of the pool without waking the calling thread every time.
             rayon::scope(|_| self.advance_on(model, state, steps, load_factor, true));
+        } else {
+            self.advance_on(model, state, steps, load_factor, false);
         }
-    }
-
-    /// [`Integrator::advance`] on the calling thread and one partner thread, which take the
-    /// shares of every sweep set by `split` and meet at a spinning barrier three times a
-    /// step: after the kick-drift sweep, after the loads sweep, and after the loads that act
-    /// across wires (added by the calling thread, with the lent contacts and the friction
-    /// loss). The same arithmetic in the same order as [`Integrator::advance_on`]. Returns
-    /// the time (s) each thread spent on its share of the loads sweeps (calling thread,
-    /// partner).
-    fn advance_split(
-        &mut self,
-        model: &FineModel,
-        state: &mut ModelState,
-        steps: u64,
-        load_factor: &(dyn Fn(f64) -> f64 + Sync),
-        split: &SweepSplit,
-    ) -> (f64, f64) {
-        let (dt, start) = (self.dt, self.time);
-        let h = 0.5 * dt;
-        let damp = (-self.damping_rate * dt).exp();
-        let k = split.owned;
-        let lent = split.lent(model);
-        let lent_count = lent.map_or(0, |l| model.wires[l.wire].contacts.len() - l.first);
-        self.lent.resize(lent_count, ContactLoad::open_at(0));
-        let ModelState {
-            wires,
-            contacts,
-            friction_work,
-        } = state;
-        let (s0, s1) = wires.split_at_mut(k);
-        let (h0, h1) = contacts.split_at_mut(k);
-        let (f0, f1) = self.frames.split_at_mut(k);
-        let (l0, l1) = self.loads.split_at_mut(k);
-        let shares = [RwLock::new((s0, h0, f0)), RwLock::new((s1, h1, f1))];
-        let loads = [Mutex::new(l0), Mutex::new(l1)];
-        let lent_buf = Mutex::new(&mut self.lent[..]);
-        let barrier = SpinBarrier::new(2);
-        // The thread that evaluates the lent contacts: the one that does not own the wire.
-        let borrower = lent.map(|l| usize::from(l.wire < k));
-        let part = |p: usize, mut friction_work: Option<&mut f64>| -> (f64, f64, f64) {
-            let _guard = BreakOnPanic(&barrier);
-            let wires = if p == 0 { 0..k } else { k..model.wires.len() };
-            let (mut time, mut factor, mut busy) = (start, f64::NAN, 0.0);
-            for i in 0..=steps {
-                let (first, last) = (i == 0, i == steps);
-                {
-                    let mut share = shares[p].write().unwrap();
-                    let (states, hist, frames) = &mut *share;
-                    let own_loads = loads[p].lock().unwrap();
-                    model.wires[wires.clone()]
-                        .iter()
-                        .zip(states.iter_mut())
-                        .zip(hist.iter_mut())
-                        .zip(own_loads.iter())
-                        .zip(frames.iter_mut())
-                        .for_each(|((((w, s), hist), l), frames)| {
-                            kick_drift_wire(w, s, hist, l, frames, (first, last), (h, dt, damp));
-                        });
-                }
-                if last {
-                    break;
-                }
-                barrier.wait(p);
-                factor = load_factor(time + dt);
-                let g = model.gravity * factor;
-                let begun = Instant::now();
-                {
-                    let (a, b) = (shares[0].read().unwrap(), shares[1].read().unwrap());
-                    let frames_of = |j: usize| if j < k { &a.2[j][..] } else { &b.2[j - k][..] };
-                    let state_of = |j: usize| if j < k { &a.0[j] } else { &b.0[j - k] };
-                    let hist_of = |j: usize| if j < k { &a.1[j][..] } else { &b.1[j - k][..] };
-                    let mut own_loads = loads[p].lock().unwrap();
-                    for (i, l) in wires.clone().zip(own_loads.iter_mut()) {
-                        let lent_here = lent.filter(|c| c.wire == i).map(|c| c.first);
-                        let w = &model.wires[i];
-                        model.wire_loads(
-                            i,
-                            w,
-                            state_of(i),
-                            hist_of(i),
-                            &frames_of,
-                            &g,
-                            factor,
-                            l,
-                            lent_here,
-                        );
-                    }
-                    if let (Some(c), Some(q)) = (lent, borrower)
-                        && q == p
-                    {
-                        let mut buf = lent_buf.lock().unwrap();
-                        model.evaluate_core_contacts(
-                            c.wire,
-                            hist_of(c.wire),
-                            &frames_of,
-                            c.first,
-                            &mut buf,
-                        );
-                    }
-                }
-                busy += begun.elapsed().as_secs_f64();
-                barrier.wait(p);
-                if let Some(fw) = friction_work.as_deref_mut() {
-                    let (mut a, mut b) = (loads[0].lock().unwrap(), loads[1].lock().unwrap());
-                    let mut slots = SplitLoads {
-                        head: &mut a,
-                        tail: &mut b,
-                    };
-                    if let Some(c) = lent {
-                        let l = slots.slot_mut(c.wire);
-                        l.contacts[c.first..c.first + lent_count]
-                            .copy_from_slice(&lent_buf.lock().unwrap());
-                        model.add_core_contacts_loads(c.wire, l);
-                    }
-                    let (sa, sb) = (shares[0].read().unwrap(), shares[1].read().unwrap());
-                    let poses_of = |j: usize| {
-                        if j < k {
-                            &sa.0[j].poses[..]
-                        } else {
-                            &sb.0[j - k].poses[..]
-                        }
-                    };
-                    model.add_shared_loads(poses_of, &mut slots);
-                    // The friction loss, summed in wire order as `commit_contacts` does.
-                    for j in 0..model.wires.len() {
-                        *fw += slots.slot(j).slip_work;
-                    }
-                }
-                barrier.wait(p);
-                time += dt;
-            }
-            (time, factor, busy)
-        };
-        let ((time, factor, busy), partner_busy) = std::thread::scope(|scope| {
-            let partner = scope.spawn(|| part(1, None).2);
-            let mine = part(0, Some(friction_work));
-            (
-                mine,
-                partner
-                    .join()
-                    .expect("the partner thread of the sweeps panicked"),
-            )
-        });
-        self.time = time;
-        self.steps += steps;
-        if steps > 0 {
-            self.load_factor = factor;
-        }
-        (busy, partner_busy)
     }
 
     /// [`Integrator::advance`], its sweeps over the wires in parallel if `parallel`.
@@ -400,7 +214,33 @@ impl Integrator {
                 wires, contacts, ..
             } = &mut *state;
             let kick_drift = |((((w, s), hist), l), frames): KickDrift<'_>| {
-                kick_drift_wire(w, s, hist, l, frames, (first, last), (h, dt, damp));
+                if !first {
+                    for (hi, c) in hist.iter_mut().zip(&l.contacts) {
+                        *hi = c.history;
+                    }
+                }
+                for (k, seg) in w.chain.segments.iter().enumerate() {
+                    let (dv, dl) = (l.forces[k] * (h / seg.mass), l.torques[k] * h);
+                    if !first {
+                        s.velocities[k] += dv;
+                        s.angular_momenta[k] += dl;
+                        if damp < 1.0 {
+                            s.velocities[k] *= damp;
+                            s.angular_momenta[k] *= damp;
+                        }
+                    }
+                    if last {
+                        continue;
+                    }
+                    s.velocities[k] += dv;
+                    s.angular_momenta[k] += dl;
+                    let p = &mut s.poses[k];
+                    p.position += s.velocities[k] * dt;
+                    p.rotation = seg.free_rotation(&p.rotation, &s.angular_momenta[k], dt);
+                }
+                if !last {
+                    update_frames(&s.poses, frames);
+                }
             };
             if parallel {
                 model
@@ -440,50 +280,6 @@ impl Integrator {
     /// Energies of `state` from the loads already evaluated (no extra load evaluation).
     pub fn energies(&self, model: &FineModel, state: &ModelState) -> Energies {
         model.energies_from_loads(state, &self.loads)
-    }
-}
-
-/// One wire's share of a step's kick-drift sweep: commit of its contact histories from `l`
-/// (the previous step's trial results) and the previous step's second half kick with the
-/// damping factor `damp` (unless `first`), then this step's first half kick, the drift and
-/// the segments' frames (unless `last`); `(h, dt)` = (half step, step) in s.
-#[allow(clippy::inline_always)]
-#[inline(always)]
-fn kick_drift_wire(
-    w: &Wire,
-    s: &mut WireState,
-    hist: &mut [ContactHistory],
-    l: &WireLoads,
-    frames: &mut [Frame],
-    (first, last): (bool, bool),
-    (h, dt, damp): (f64, f64, f64),
-) {
-    if !first {
-        for (hi, c) in hist.iter_mut().zip(&l.contacts) {
-            *hi = c.history;
-        }
-    }
-    for (k, seg) in w.chain.segments.iter().enumerate() {
-        let (dv, dl) = (l.forces[k] * (h / seg.mass), l.torques[k] * h);
-        if !first {
-            s.velocities[k] += dv;
-            s.angular_momenta[k] += dl;
-            if damp < 1.0 {
-                s.velocities[k] *= damp;
-                s.angular_momenta[k] *= damp;
-            }
-        }
-        if last {
-            continue;
-        }
-        s.velocities[k] += dv;
-        s.angular_momenta[k] += dl;
-        let p = &mut s.poses[k];
-        p.position += s.velocities[k] * dt;
-        p.rotation = seg.free_rotation(&p.rotation, &s.angular_momenta[k], dt);
-    }
-    if !last {
-        update_frames(&s.poses, frames);
     }
 }
 

@@ -53,10 +53,8 @@ pub mod settle;
 pub mod so3;
 pub mod sparse_tangent;
 pub mod spectrum;
-mod spin_barrier;
 pub mod statics;
 mod sweep;
-mod sweep_split;
 pub mod tangent;
 
 pub use bending::{AXIAL_TOLERANCE, BendingError, BendingPoint, BendingTest, Pressure};

@@ -701,9 +701,69 @@ impl FineModel {
         loads: &mut [WireLoads],
     ) {
         let g = self.gravity * load_factor;
-        let frames_of = |j: usize| &frames[j][..];
+        let all_frames = frames;
+        let core_segs = &self.wires[0].chain.segments;
         let wire_loads = |(i, (((w, s), hist), l)): WireSweep<'_>| {
-            self.wire_loads(i, w, s, hist, &frames_of, &g, load_factor, l, None);
+            let frames = &all_frames[i];
+            l.forces.iter_mut().for_each(|f| *f = Vector3::zeros());
+            l.torques.iter_mut().for_each(|t| *t = Vector3::zeros());
+            let (spring, grav) = w.add_loads(
+                &s.poses,
+                frames,
+                &g,
+                load_factor,
+                &mut l.forces,
+                &mut l.torques,
+            );
+            l.spring_energy = spring;
+            l.gravity_energy = grav;
+            if i == 0 {
+                return;
+            }
+            let (mut ce, mut fe, mut sw) = (0.0, 0.0, 0.0);
+            let nc = w.contacts.len();
+            let (to_core, to_wires) = l.contacts.split_at_mut(nc);
+            for ((cp, h), out) in w.contacts.iter().zip(hist).zip(to_core) {
+                contact::evaluate_into(cp, h, &frames[cp.segment], &all_frames[0], core_segs, out);
+                let c = &*out;
+                l.forces[cp.segment] += c.force_wire;
+                l.torques[cp.segment] += c.torque_wire;
+                ce += c.normal_energy;
+                fe += c.tangential_energy;
+                sw += c.slip_work;
+            }
+            for ((lk, h), out) in w.links.iter().zip(&hist[nc..]).zip(to_wires.iter_mut()) {
+                let k = lk.segment;
+                *out = interlayer::evaluate(
+                    lk,
+                    h,
+                    &frames[k],
+                    w.chain.segments[k].length,
+                    &all_frames[lk.partner],
+                    &self.wires[lk.partner].chain.segments,
+                );
+            }
+            // One contact per crossing at the chords' nodes.
+            // Links held by the static solve's active set are kept as held.
+            let dropped = interlayer::duplicates(&w.links, |i| {
+                let c = &to_wires[i];
+                (c.state != ContactState::Open && hist[nc + i].hold == Hold::Free)
+                    .then(|| interlayer::centrality(c, w.chain.segments[w.links[i].segment].length))
+            });
+            for ((lk, out), drop) in w.links.iter().zip(to_wires.iter_mut()).zip(dropped) {
+                if drop {
+                    *out = ContactLoad::open_at(out.core_segment);
+                }
+                let (k, c) = (lk.segment, *out);
+                l.forces[k] += c.force_wire;
+                l.torques[k] += c.torque_wire;
+                ce += c.normal_energy;
+                fe += c.tangential_energy;
+                sw += c.slip_work;
+            }
+            l.contact_energy = ce;
+            l.friction_energy = fe;
+            l.slip_work = sw;
         };
         if sweep::parallel() {
             self.wires
@@ -722,175 +782,40 @@ impl FineModel {
                 .enumerate()
                 .for_each(wire_loads);
         }
-        self.add_shared_loads(|j| &state.wires[j].poses[..], loads);
-    }
-
-    /// The loads on wire `i` (`w`, its state `s`, committed histories `hist`) into `l`:
-    /// joints, anchors, gravity and external forces, then its contacts with the core and its
-    /// links, each added to its segment in contact order. `frames_of(j)` gives wire `j`'s
-    /// frames. With `lent = Some(n)` only the first `n` contacts with the core are evaluated
-    /// and none is added: the rest are evaluated elsewhere ([`FineModel::evaluate_core_contacts`])
-    /// and all are added by [`FineModel::add_core_contacts_loads`] (a wire without links).
-    #[allow(clippy::inline_always)]
-    #[inline(always)]
-    pub(crate) fn wire_loads<'f>(
-        &self,
-        i: usize,
-        w: &Wire,
-        s: &WireState,
-        hist: &[ContactHistory],
-        frames_of: &impl Fn(usize) -> &'f [Frame],
-        g: &Vector3<f64>,
-        load_factor: f64,
-        l: &mut WireLoads,
-        lent: Option<usize>,
-    ) {
-        let frames = frames_of(i);
-        l.forces.iter_mut().for_each(|f| *f = Vector3::zeros());
-        l.torques.iter_mut().for_each(|t| *t = Vector3::zeros());
-        let (spring, grav) = w.add_loads(
-            &s.poses,
-            frames,
-            g,
-            load_factor,
-            &mut l.forces,
-            &mut l.torques,
-        );
-        l.spring_energy = spring;
-        l.gravity_energy = grav;
-        if i == 0 {
-            return;
-        }
-        let nc = w.contacts.len();
-        if let Some(n) = lent {
-            self.evaluate_core_contacts(i, hist, frames_of, 0, &mut l.contacts[..n]);
-            return;
-        }
-        let core_segs = &self.wires[0].chain.segments;
-        let core_frames = frames_of(0);
-        let (mut ce, mut fe, mut sw) = (0.0, 0.0, 0.0);
-        let (to_core, to_wires) = l.contacts.split_at_mut(nc);
-        for ((cp, h), out) in w.contacts.iter().zip(hist).zip(to_core) {
-            contact::evaluate_into(cp, h, &frames[cp.segment], core_frames, core_segs, out);
-            let c = &*out;
-            l.forces[cp.segment] += c.force_wire;
-            l.torques[cp.segment] += c.torque_wire;
-            ce += c.normal_energy;
-            fe += c.tangential_energy;
-            sw += c.slip_work;
-        }
-        for ((lk, h), out) in w.links.iter().zip(&hist[nc..]).zip(to_wires.iter_mut()) {
-            let k = lk.segment;
-            *out = interlayer::evaluate(
-                lk,
-                h,
-                &frames[k],
-                w.chain.segments[k].length,
-                frames_of(lk.partner),
-                &self.wires[lk.partner].chain.segments,
-            );
-        }
-        // One contact per crossing at the chords' nodes.
-        // Links held by the static solve's active set are kept as held.
-        let dropped = interlayer::duplicates(&w.links, |i| {
-            let c = &to_wires[i];
-            (c.state != ContactState::Open && hist[nc + i].hold == Hold::Free)
-                .then(|| interlayer::centrality(c, w.chain.segments[w.links[i].segment].length))
-        });
-        for ((lk, out), drop) in w.links.iter().zip(to_wires.iter_mut()).zip(dropped) {
-            if drop {
-                *out = ContactLoad::open_at(out.core_segment);
-            }
-            let (k, c) = (lk.segment, *out);
-            l.forces[k] += c.force_wire;
-            l.torques[k] += c.torque_wire;
-            ce += c.normal_energy;
-            fe += c.tangential_energy;
-            sw += c.slip_work;
-        }
-        l.contact_energy = ce;
-        l.friction_energy = fe;
-        l.slip_work = sw;
-    }
-
-    /// Evaluates the contacts `first..first + out.len()` of wire `i` with the core (committed
-    /// histories `hist`, frames from `frames_of`) into `out`, without adding their loads.
-    pub(crate) fn evaluate_core_contacts<'f>(
-        &self,
-        i: usize,
-        hist: &[ContactHistory],
-        frames_of: &impl Fn(usize) -> &'f [Frame],
-        first: usize,
-        out: &mut [ContactLoad],
-    ) {
-        let (frames, core_frames) = (frames_of(i), frames_of(0));
-        let core_segs = &self.wires[0].chain.segments;
-        let n = out.len();
-        let points = &self.wires[i].contacts[first..first + n];
-        for ((cp, h), out) in points.iter().zip(&hist[first..first + n]).zip(out) {
-            contact::evaluate_into(cp, h, &frames[cp.segment], core_frames, core_segs, out);
-        }
-    }
-
-    /// Adds the loads of wire `i`'s contacts with the core, evaluated into `l.contacts`, to
-    /// its segments in contact order, and sets its contact energies and slip work: the
-    /// additions [`FineModel::wire_loads`] makes as it evaluates (a wire without links).
-    pub(crate) fn add_core_contacts_loads(&self, i: usize, l: &mut WireLoads) {
-        let w = &self.wires[i];
-        debug_assert!(w.links.is_empty());
-        let (mut ce, mut fe, mut sw) = (0.0, 0.0, 0.0);
-        for (cp, c) in w.contacts.iter().zip(&l.contacts) {
-            l.forces[cp.segment] += c.force_wire;
-            l.torques[cp.segment] += c.torque_wire;
-            ce += c.normal_energy;
-            fe += c.tangential_energy;
-            sw += c.slip_work;
-        }
-        l.contact_energy = ce;
-        l.friction_energy = fe;
-        l.slip_work = sw;
-    }
-
-    /// The loads that act across wires, added after the sweep over the wires in a fixed
-    /// order: the core's share of the wire-to-core contacts (in wire and contact order), the
-    /// partners' share of the wire-to-wire contacts (in wire and link order) and the ties
-    /// (their energy booked on the core). `poses_of(j)` gives wire `j`'s poses.
-    pub(crate) fn add_shared_loads<'p, L: LoadSlots + ?Sized>(
-        &self,
-        poses_of: impl Fn(usize) -> &'p [Pose],
-        loads: &mut L,
-    ) {
-        for (i, w) in self.wires.iter().enumerate().skip(1) {
-            for k in 0..w.contacts.len() {
-                let c = &loads.slot(i).contacts[k];
-                let (j, f, t) = (c.core_segment, c.force_core, c.torque_core);
-                let core = loads.slot_mut(0);
-                core.forces[j] += f;
-                core.torques[j] += t;
+        let core_poses = &state.wires[0].poses;
+        // The core's share, in a fixed order.
+        let (core, helical) = loads.split_at_mut(1);
+        let core = &mut core[0];
+        for (w, l) in self.wires[1..].iter().zip(helical.iter()) {
+            for c in &l.contacts[..w.contacts.len()] {
+                core.forces[c.core_segment] += c.force_core;
+                core.torques[c.core_segment] += c.torque_core;
             }
         }
+        // The partners' share of the wire-to-wire contacts, in wire and link order.
         for (i, w) in self.wires.iter().enumerate() {
             let nc = w.contacts.len();
             for (k, lk) in w.links.iter().enumerate() {
-                let c = &loads.slot(i).contacts[nc + k];
-                let (j, f, t) = (c.core_segment, c.force_core, c.torque_core);
-                let p = loads.slot_mut(lk.partner);
-                p.forces[j] += f;
-                p.torques[j] += t;
+                let c = loads[i].contacts[nc + k];
+                let p = &mut loads[lk.partner];
+                p.forces[c.core_segment] += c.force_core;
+                p.torques[c.core_segment] += c.torque_core;
             }
         }
-        let core_poses = poses_of(0);
+        let (core, helical) = loads.split_at_mut(1);
+        let core = &mut core[0];
+        // Ties, in a fixed order; their energy is booked on the core.
         for t in &self.ties {
-            let l = t
-                .joint
-                .evaluate(&core_poses[t.core_segment], &poses_of(t.wire)[t.segment]);
-            let core = loads.slot_mut(0);
+            let l = t.joint.evaluate(
+                &core_poses[t.core_segment],
+                &state.wires[t.wire].poses[t.segment],
+            );
             core.forces[t.core_segment] += l.force_a;
             core.torques[t.core_segment] += l.torque_a;
-            core.spring_energy += l.energy;
-            let w = loads.slot_mut(t.wire);
+            let w = &mut helical[t.wire - 1];
             w.forces[t.segment] += l.force_b;
             w.torques[t.segment] += l.torque_b;
+            core.spring_energy += l.energy;
         }
     }
 
@@ -1024,26 +949,6 @@ type WireSweep<'a> = (
         &'a mut WireLoads,
     ),
 );
-
-/// Every wire's loads by wire index, wherever they are kept: one slice, or the shares of
-/// the threads of a split sweep ([`crate::sweep_split`]).
-pub(crate) trait LoadSlots {
-    /// Wire `i`'s loads.
-    fn slot(&self, i: usize) -> &WireLoads;
-    /// Wire `i`'s loads, to change.
-    fn slot_mut(&mut self, i: usize) -> &mut WireLoads;
-}
-
-impl LoadSlots for [WireLoads] {
-    #[inline(always)]
-    fn slot(&self, i: usize) -> &WireLoads {
-        &self[i]
-    }
-    #[inline(always)]
-    fn slot_mut(&mut self, i: usize) -> &mut WireLoads {
-        &mut self[i]
-    }
-}
 
 /// Sets `frames` to the frames of `poses` ([`Frame::of`]), one for one.
 pub(crate) fn update_frames(poses: &[Pose], frames: &mut [Frame]) {

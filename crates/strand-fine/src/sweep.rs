@@ -3,14 +3,10 @@
 //! A sweep over the seven wires of a one-layer strand is a few tens of microseconds of work;
 //! handing it to rayon's pool costs a wake-up and a wait even with one thread in the pool
 //! (the calling thread is not one of the pool's: it queues the work and blocks on a latch).
-//! With one thread the sweeps run in the calling thread instead. A stretch of steps
-//! ([`crate::Integrator::advance`] of at least [`crate::sweep_split::SPLIT_MIN_STEPS`] steps)
-//! with more than one thread and [`crate::Integrator::split_sweeps`] on runs on the calling thread and one partner thread instead,
-//! each sweep split between them by cost ([`crate::sweep_split`]). Each wire's work is the
-//! same arithmetic either way and every sum across wires is taken in a fixed order after the
-//! sweep, so the results do not depend on the choice (the thread-count tests of
-//! `tests/settled.rs`, `tests/stable_step.rs` and `tests/split_sweep.rs` check it bit for
-//! bit).
+//! With one thread the sweeps run in the calling thread instead. Each wire's work is the same
+//! arithmetic either way and every sum across wires is taken in a fixed order after the
+//! sweep, so the results do not depend on the choice (the thread-count test of
+//! `tests/settled.rs` checks it bit for bit).
 
 /// True when sweeps over wires should run in parallel: rayon's pool, as seen from the
 /// calling thread, has more than one thread (`RAYON_NUM_THREADS`).
