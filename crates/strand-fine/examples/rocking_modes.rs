@@ -80,14 +80,19 @@ fn bend(spp: usize, points: Option<usize>) {
         r.as_ref().map(|(c, _, _)| c.last().copied())
     );
     let (m, state) = straight.unwrap();
-    analyse(&m, &state, "consistent", m.element_tangents(&state));
-    analyse(
-        &m,
-        &state,
-        "all stuck",
-        m.elastic_tangents(&state, |_, _| true),
-    );
+    analyse_both_tangents(&m, &state);
     println!("[{:.1} s CPU]", common::cpu_seconds());
+}
+
+/// The modes of the consistent tangent and of the tangent with every contact stuck.
+fn analyse_both_tangents(m: &strand_fine::FineModel, state: &strand_fine::ModelState) {
+    analyse(m, state, "consistent", m.element_tangents(state));
+    analyse(
+        m,
+        state,
+        "all stuck",
+        m.elastic_tangents(state, |_, _| true),
+    );
 }
 
 fn main() {
@@ -116,13 +121,7 @@ fn main() {
             common::save_state(&state, &p);
         }
     }
-    analyse(&m, &state, "consistent", m.element_tangents(&state));
-    analyse(
-        &m,
-        &state,
-        "all stuck",
-        m.elastic_tangents(&state, |_, _| true),
-    );
+    analyse_both_tangents(&m, &state);
     let polish = StaticOptions {
         load_steps: 1,
         min_increment: 1.0,
