@@ -195,8 +195,44 @@ impl Chain {
         forces: &mut [Vector3<f64>],
         torques: &mut [Vector3<f64>],
     ) -> f64 {
+        let run = SegmentRun {
+            first: 0,
+            poses,
+            frames,
+            before: None,
+            after: None,
+        };
+        self.add_joint_loads_in(&run, forces, torques)
+    }
+
+    /// [`Chain::add_joint_loads`] on a run of segments only: the loads of every joint
+    /// touching them (the joints at the run's ends included, evaluated with the neighbours
+    /// outside it), added to `forces` and `torques` of the run's segments; returns the
+    /// energy of the joints whose first segment is in the run (J). Each segment receives the
+    /// same sums, in the same order, as from [`Chain::add_joint_loads`]: runs that cut the
+    /// chain split its loads exactly.
+    #[inline(always)]
+    pub fn add_joint_loads_in(
+        &self,
+        run: &SegmentRun<'_>,
+        forces: &mut [Vector3<f64>],
+        torques: &mut [Vector3<f64>],
+    ) -> f64 {
+        let (a, n) = (run.first, run.poses.len());
+        let (poses, frames) = (run.poses, run.frames);
         let mut energy = 0.0;
-        for (k, j) in self.joints.iter().enumerate() {
+        if n == 0 {
+            return energy;
+        }
+        if a > 0 {
+            let (p, f) = run
+                .before
+                .expect("a run inside a chain has its neighbour before");
+            let l = self.joints[a - 1].evaluate_in(p, f, &poses[0], &frames[0]);
+            forces[0] += l.force_b;
+            torques[0] += l.torque_b;
+        }
+        for (k, j) in self.joints[a..a + n - 1].iter().enumerate() {
             let l = j.evaluate_in(&poses[k], &frames[k], &poses[k + 1], &frames[k + 1]);
             forces[k] += l.force_a;
             torques[k] += l.torque_a;
@@ -204,8 +240,34 @@ impl Chain {
             torques[k + 1] += l.torque_b;
             energy += l.energy;
         }
+        if a + n < self.len() {
+            let (p, f) = run
+                .after
+                .expect("a run inside a chain has its neighbour after");
+            let l = self.joints[a + n - 1].evaluate_in(&poses[n - 1], &frames[n - 1], p, f);
+            forces[n - 1] += l.force_a;
+            torques[n - 1] += l.torque_a;
+            energy += l.energy;
+        }
         energy
     }
+}
+
+/// The poses and frames of a run of a chain's segments `first..first + poses.len()`, and
+/// the neighbours' on either side (for the joints at the run's ends; `None` at the chain's
+/// ends).
+#[derive(Debug, Clone, Copy)]
+pub struct SegmentRun<'a> {
+    /// The run's first segment.
+    pub first: usize,
+    /// The run's poses.
+    pub poses: &'a [Pose],
+    /// The run's frames.
+    pub frames: &'a [Frame],
+    /// Pose and frame of the segment before the run.
+    pub before: Option<(&'a Pose, &'a Frame)>,
+    /// Pose and frame of the segment after the run.
+    pub after: Option<(&'a Pose, &'a Frame)>,
 }
 
 /// Length of a helix of radius `radius` and pitch `pitch` over the axial length `length` (m).

@@ -13,8 +13,15 @@ use nalgebra::{Matrix3, SMatrix, Vector3};
 use rayon::prelude::*;
 
 use crate::contact::ContactHistory;
-use crate::model::{Energies, FineModel, ModelState, Wire, WireLoads, WireState, update_frames};
-use crate::segment::Frame;
+use crate::load_share::LoadShares;
+
+mod partition;
+
+/// Fewest steps of an [`Integrator::advance`] that run on threads holding a piece of the
+/// strand each ([`partition`]): a stretch starts a thread per piece.
+const PARTITION_MIN_STEPS: u64 = 8;
+use crate::model::{Energies, FineModel, ModelState, WireLoads, WireState, update_frames};
+use crate::segment::{Frame, Pose, Segment};
 use crate::sweep;
 
 /// `B = M^{-1/2}` block by block at `state`, one 6 x 6 block per segment: `m^{-1/2} I` on its
@@ -105,12 +112,19 @@ pub fn stable_time_step(model: &FineModel, state: &ModelState, safety: f64) -> f
 /// One wire's share of a kick-drift sweep: the wire, its state, its committed contact
 /// histories, its loads and its segments' frames.
 type KickDrift<'a> = (
+    usize,
     (
-        ((&'a Wire, &'a mut WireState), &'a mut Vec<ContactHistory>),
-        &'a WireLoads,
+        (
+            (&'a mut WireState, &'a mut Vec<ContactHistory>),
+            &'a mut Vec<Frame>,
+        ),
+        &'a mut Shared,
     ),
-    &'a mut Vec<Frame>,
 );
+
+/// Forces (N) and torques (N m) on a wire's segments with the other wires' shares added
+/// ([`LoadShares`]): the kick's loads, for a wire that takes shares.
+type Shared = (Vec<Vector3<f64>>, Vec<Vector3<f64>>);
 
 /// Kick-drift-kick integrator with its load buffers (allocation-free steps).
 #[derive(Debug, Clone)]
@@ -131,6 +145,14 @@ pub struct Integrator {
     /// Every segment's frame after the last drift of [`Integrator::advance`] (one list per
     /// wire), for the loads of the step.
     frames: Vec<Vec<Frame>>,
+    /// Where each wire's shares of the other wires' contacts and ties come from.
+    shares: LoadShares,
+    /// Each wire's loads with its shares added, during [`Integrator::advance`] (empty for a
+    /// wire that takes none).
+    shared: Vec<Shared>,
+    /// The cut of the strand into pieces of the last stretch on several threads, moved
+    /// toward equal work after every stretch ([`partition`]).
+    cut: Option<partition::Cut>,
 }
 
 impl Integrator {
@@ -139,6 +161,17 @@ impl Integrator {
         let mut loads = model.load_buffers();
         model.compute_loads(state, 1.0, &mut loads);
         let frames = loads.iter().map(|l| l.frames.clone()).collect();
+        let shares = LoadShares::new(model);
+        let shared = (0..model.wires.len())
+            .map(|w| {
+                let n = if shares.takes(w) {
+                    loads[w].forces.len()
+                } else {
+                    0
+                };
+                (vec![Vector3::zeros(); n], vec![Vector3::zeros(); n])
+            })
+            .collect();
         Self {
             dt,
             time: 0.0,
@@ -147,6 +180,9 @@ impl Integrator {
             damping_rate: 0.0,
             loads,
             frames,
+            shares,
+            shared,
+            cut: None,
         }
     }
 
@@ -173,10 +209,12 @@ impl Integrator {
     /// `steps` calls of [`Integrator::step`] with those load factors, in two sweeps over the
     /// wires per step instead of four: the commit of a step's contact histories, its second
     /// half kick (and damping), the first half kick and drift of the next and the segments'
-    /// frames at the new poses are one sweep, the loads the other. The sweeps run in
-    /// parallel when rayon's pool has more than one thread, else in the calling thread
-    /// (`sweep` module), and in parallel all `steps` run on one of the pool's threads; the
-    /// numbers are the same either way.
+    /// frames at the new poses are one sweep, the loads the other. With more than one
+    /// thread in rayon's pool and at least 8 steps, the strand is cut along its length into
+    /// one piece per thread, each thread holding its piece for all the steps (`partition`
+    /// module; a strand of one layer without ties); otherwise the sweeps run in parallel
+    /// over the wires when rayon's pool has more than one thread, else in the calling
+    /// thread (`sweep` module). The numbers are the same every way.
     pub fn advance(
         &mut self,
         model: &FineModel,
@@ -184,7 +222,19 @@ impl Integrator {
         steps: u64,
         load_factor: &(dyn Fn(f64) -> f64 + Sync),
     ) {
-        if sweep::parallel() {
+        let threads = rayon::current_num_threads();
+        let cut = if threads > 1 && steps >= PARTITION_MIN_STEPS {
+            match self.cut.take() {
+                Some(c) if c.fits(model, threads) => Some(c),
+                _ => partition::Cut::new(model, threads),
+            }
+        } else {
+            None
+        };
+        if let Some(cut) = cut {
+            let busy = partition::advance(self, model, state, steps, load_factor, &cut);
+            self.cut = cut.rebalanced(model, &busy).or(Some(cut));
+        } else if sweep::parallel() {
             // On one of the pool's threads: the sweeps' halves are handed to the other
             // threads of the pool without waking the calling thread every time.
             rayon::scope(|_| self.advance_on(model, state, steps, load_factor, true));
@@ -202,84 +252,180 @@ impl Integrator {
         load_factor: &(dyn Fn(f64) -> f64 + Sync),
         parallel: bool,
     ) {
-        let dt = self.dt;
-        let h = 0.5 * dt;
-        let damp = (-self.damping_rate * dt).exp();
+        let kd = KickDriftStep {
+            dt: self.dt,
+            damp: (-self.damping_rate * self.dt).exp(),
+            first: true,
+            last: false,
+            own: false,
+        };
+        let mut kd = kd;
         for i in 0..=steps {
             // Commit (the previous step's), kick (the previous step's second half and this
             // step's first), then drift and frames; after the last step, commit and the
             // second half.
-            let (first, last) = (i == 0, i == steps);
+            (kd.first, kd.last) = (i == 0, i == steps);
             let ModelState {
                 wires, contacts, ..
             } = &mut *state;
-            let kick_drift = |((((w, s), hist), l), frames): KickDrift<'_>| {
-                if !first {
-                    for (hi, c) in hist.iter_mut().zip(&l.contacts) {
-                        *hi = c.history;
-                    }
-                }
-                for (k, seg) in w.chain.segments.iter().enumerate() {
-                    let (dv, dl) = (l.forces[k] * (h / seg.mass), l.torques[k] * h);
-                    if !first {
-                        s.velocities[k] += dv;
-                        s.angular_momenta[k] += dl;
-                        if damp < 1.0 {
-                            s.velocities[k] *= damp;
-                            s.angular_momenta[k] *= damp;
-                        }
-                    }
-                    if last {
-                        continue;
-                    }
-                    s.velocities[k] += dv;
-                    s.angular_momenta[k] += dl;
-                    let p = &mut s.poses[k];
-                    p.position += s.velocities[k] * dt;
-                    p.rotation = seg.free_rotation(&p.rotation, &s.angular_momenta[k], dt);
-                }
-                if !last {
-                    update_frames(&s.poses, frames);
-                }
+            let (all_loads, shares) = (&self.loads, &self.shares);
+            let kick_drift = |(wi, (((s, hist), frames), shared)): KickDrift<'_>| {
+                kick_drift_wire(
+                    model,
+                    shares,
+                    |j| &all_loads[j],
+                    wi,
+                    s,
+                    hist,
+                    frames,
+                    shared,
+                    &kd,
+                );
             };
             if parallel {
-                model
-                    .wires
-                    .par_iter()
-                    .zip(wires.par_iter_mut())
+                wires
+                    .par_iter_mut()
                     .zip(contacts.par_iter_mut())
-                    .zip(self.loads.par_iter())
                     .zip(self.frames.par_iter_mut())
+                    .zip(self.shared.par_iter_mut())
+                    .enumerate()
                     .for_each(kick_drift);
             } else {
-                model
-                    .wires
-                    .iter()
-                    .zip(wires.iter_mut())
+                wires
+                    .iter_mut()
                     .zip(contacts.iter_mut())
-                    .zip(&self.loads)
                     .zip(self.frames.iter_mut())
+                    .zip(self.shared.iter_mut())
+                    .enumerate()
                     .for_each(kick_drift);
             }
-            if !first {
+            if !kd.first {
                 // The friction loss, summed in wire order as `commit_contacts` does.
                 for l in &self.loads {
                     state.friction_work += l.slip_work;
                 }
             }
-            if last {
+            if kd.last {
                 break;
             }
-            self.load_factor = load_factor(self.time + dt);
+            self.load_factor = load_factor(self.time + self.dt);
             model.loads_at_frames(state, self.load_factor, &self.frames, &mut self.loads);
-            self.time += dt;
+            kd.own = true;
+            self.time += self.dt;
             self.steps += 1;
+        }
+        if kd.own {
+            // The loads at the last step's end, shares added, as `compute_loads` gives them.
+            self.shares.add_all(model, &mut self.loads);
         }
     }
 
     /// Energies of `state` from the loads already evaluated (no extra load evaluation).
     pub fn energies(&self, model: &FineModel, state: &ModelState) -> Energies {
         model.energies_from_loads(state, &self.loads)
+    }
+}
+
+/// What a kick-drift sweep does to every wire at one step of [`Integrator::advance`].
+#[derive(Debug, Clone, Copy)]
+struct KickDriftStep {
+    /// Time step (s).
+    dt: f64,
+    /// Factor exp(-gamma dt) of the damping on the momenta over a step (-).
+    damp: f64,
+    /// The first sweep of a stretch: no commit, no second half kick.
+    first: bool,
+    /// The last sweep of a stretch: commit and the second half kick only.
+    last: bool,
+    /// The loads are each wire's own, without the other wires' shares ([`LoadShares`]):
+    /// the kick adds them.
+    own: bool,
+}
+
+/// One wire's share of a kick-drift sweep: wire `wi`'s commit of its contact histories, its
+/// kicks with the loads `loads(wi)` (and its shares of the other wires' loads), its drift and
+/// its frames at the new poses.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn kick_drift_wire<'a>(
+    model: &FineModel,
+    shares: &LoadShares,
+    loads: impl Fn(usize) -> &'a WireLoads,
+    wi: usize,
+    s: &mut WireState,
+    hist: &mut [ContactHistory],
+    frames: &mut [Frame],
+    shared: &mut Shared,
+    kd: &KickDriftStep,
+) {
+    let (w, l) = (&model.wires[wi], loads(wi));
+    if !kd.first {
+        for (hi, c) in hist.iter_mut().zip(&l.contacts) {
+            *hi = c.history;
+        }
+    }
+    let (forces, torques) = if kd.own && shares.takes(wi) {
+        let (f, t) = shared;
+        f.copy_from_slice(&l.forces);
+        t.copy_from_slice(&l.torques);
+        shares.add_to(model, wi, 0..f.len(), &loads, f, t, &mut 0.0);
+        (&f[..], &t[..])
+    } else {
+        (&l.forces[..], &l.torques[..])
+    };
+    let WireState {
+        poses,
+        velocities,
+        angular_momenta,
+    } = s;
+    let motion = SegmentMotion {
+        poses,
+        velocities,
+        angular_momenta,
+    };
+    kick_drift_segments(&w.chain.segments, motion, forces, torques, kd);
+    if !kd.last {
+        update_frames(&s.poses, frames);
+    }
+}
+
+/// Poses, velocities (m/s) and angular momenta (kg m^2/s) of a run of segments.
+struct SegmentMotion<'a> {
+    poses: &'a mut [Pose],
+    velocities: &'a mut [Vector3<f64>],
+    angular_momenta: &'a mut [Vector3<f64>],
+}
+
+/// The kicks (the forces `forces` and torques `torques`, N and N m) and the drift of the
+/// segments `segments` ([`kick_drift_wire`] without the commit and the frames).
+#[inline(always)]
+fn kick_drift_segments(
+    segments: &[Segment],
+    m: SegmentMotion<'_>,
+    forces: &[Vector3<f64>],
+    torques: &[Vector3<f64>],
+    kd: &KickDriftStep,
+) {
+    let (dt, damp) = (kd.dt, kd.damp);
+    let h = 0.5 * dt;
+    for (k, seg) in segments.iter().enumerate() {
+        let (dv, dl) = (forces[k] * (h / seg.mass), torques[k] * h);
+        if !kd.first {
+            m.velocities[k] += dv;
+            m.angular_momenta[k] += dl;
+            if damp < 1.0 {
+                m.velocities[k] *= damp;
+                m.angular_momenta[k] *= damp;
+            }
+        }
+        if kd.last {
+            continue;
+        }
+        m.velocities[k] += dv;
+        m.angular_momenta[k] += dl;
+        let p = &mut m.poses[k];
+        p.position += m.velocities[k] * dt;
+        p.rotation = seg.free_rotation(&p.rotation, &m.angular_momenta[k], dt);
     }
 }
 

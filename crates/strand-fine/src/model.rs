@@ -10,20 +10,21 @@
 //!
 //! Contacts ([`crate::contact`], [`crate::interlayer`]) belong to the helical wires; their
 //! partner-side loads (on the core, on a wire of the layer beneath or a neighbour) are added
-//! after the parallel sweep over wires, in wire and contact order, so the sums are the same
-//! for any number of threads. A wire's committed histories and trial loads list its
-//! wire-to-core contacts first, then its links.
+//! to the partner's after the sweep over wires, in wire and contact order (the `load_share`
+//! module), so the sums are the same for any number of threads. A wire's committed
+//! histories and trial loads list its wire-to-core contacts first, then its links.
 
 use nalgebra::Vector3;
 use rayon::prelude::*;
 use strand_core::{HelixLayer, Strand};
 
-use crate::chain::{Chain, WireSection};
+use crate::chain::{Chain, SegmentRun, WireSection};
 use crate::contact::{
     self, ContactHistory, ContactLaw, ContactLoad, ContactOptions, ContactPoint, ContactState, Hold,
 };
 use crate::interlayer::{self, LinkKind, WireLink};
-use crate::joint::{JointSpring, JointStiffness};
+use crate::joint::{JointLoad, JointSpring, JointStiffness};
+use crate::load_share::LoadShares;
 use crate::penalty;
 use crate::segment::{Frame, Placement, Pose};
 use crate::sweep;
@@ -133,26 +134,54 @@ impl Wire {
         forces: &mut [Vector3<f64>],
         torques: &mut [Vector3<f64>],
     ) -> (f64, f64) {
-        let mut spring = self.chain.add_joint_loads(poses, frames, forces, torques);
-        for a in &self.anchors {
-            let l = a.joint.evaluate(&a.ground, &poses[a.segment]);
-            forces[a.segment] += l.force_b;
-            torques[a.segment] += l.torque_b;
+        let run = SegmentRun {
+            first: 0,
+            poses,
+            frames,
+            before: None,
+            after: None,
+        };
+        self.add_loads_in(&run, gravity, load_factor, forces, torques)
+    }
+
+    /// [`Wire::add_loads`] on a run of segments only ([`Chain::add_joint_loads_in`]):
+    /// `forces` and `torques` are the run's, the energies those of the run's joints,
+    /// anchors and segments. Each segment receives the same sums in the same order as from
+    /// [`Wire::add_loads`].
+    #[inline(always)]
+    pub(crate) fn add_loads_in(
+        &self,
+        run: &SegmentRun<'_>,
+        gravity: &Vector3<f64>,
+        load_factor: f64,
+        forces: &mut [Vector3<f64>],
+        torques: &mut [Vector3<f64>],
+    ) -> (f64, f64) {
+        let (a, b) = (run.first, run.first + run.poses.len());
+        let mut spring = self.chain.add_joint_loads_in(run, forces, torques);
+        for an in self
+            .anchors
+            .iter()
+            .filter(|an| (a..b).contains(&an.segment))
+        {
+            let l = an.joint.evaluate(&an.ground, &run.poses[an.segment - a]);
+            forces[an.segment - a] += l.force_b;
+            torques[an.segment - a] += l.torque_b;
             spring += l.energy;
         }
         let mut potential = 0.0;
         // Potentials from the rest configuration: zero at the initial (straight) state
         // whatever the direction of gravity.
-        let rest = &self.chain.rest;
-        for (k, s) in self.chain.segments.iter().enumerate() {
+        let rest = &self.chain.rest[a..b];
+        for (k, (s, r)) in self.chain.segments[a..b].iter().zip(rest).enumerate() {
             let w = gravity * s.mass;
             forces[k] += w;
-            potential -= w.dot(&(poses[k].position - rest[k].position));
+            potential -= w.dot(&(run.poses[k].position - r.position));
         }
-        for (k, f) in self.external.iter().enumerate() {
-            let f = f * load_factor;
-            forces[k] += f;
-            potential -= f.dot(&(poses[k].position - rest[k].position));
+        for k in a..b.min(self.external.len()) {
+            let f = self.external[k] * load_factor;
+            forces[k - a] += f;
+            potential -= f.dot(&(run.poses[k - a].position - rest[k - a].position));
         }
         (spring, potential)
     }
@@ -650,12 +679,15 @@ impl FineModel {
     pub fn load_buffers(&self) -> Vec<WireLoads> {
         self.wires
             .iter()
-            .map(|w| WireLoads {
+            .enumerate()
+            .map(|(i, w)| WireLoads {
                 forces: vec![Vector3::zeros(); w.chain.len()],
                 torques: vec![Vector3::zeros(); w.chain.len()],
                 spring_energy: 0.0,
                 gravity_energy: 0.0,
                 contacts: vec![ContactLoad::open_at(0); w.contacts.len() + w.links.len()],
+                ties: Vec::with_capacity(self.ties.iter().filter(|t| t.wire == i).count()),
+                core_shares: Vec::with_capacity(w.contacts.len()),
                 contact_energy: 0.0,
                 friction_energy: 0.0,
                 slip_work: 0.0,
@@ -685,14 +717,17 @@ impl FineModel {
             frames.iter_mut().zip(&state.wires).for_each(update);
         }
         self.loads_at_frames(state, load_factor, &frames, loads);
+        LoadShares::new(self).add_all(self, loads);
         for (l, f) in loads.iter_mut().zip(frames) {
             l.frames = f;
         }
     }
 
     /// [`FineModel::compute_loads`] with every segment's frame at `state` given in `frames`
-    /// (one list per wire, [`update_frames`] of its poses): the time stepping updates them
-    /// in its own sweep over the wires, right after the drift.
+    /// (one list per wire, [`update_frames`] of its poses; the time stepping updates them
+    /// in its own sweep over the wires, right after the drift), each wire's own loads only:
+    /// the shares its contacts and ties put on other wires are left in `loads` to be added
+    /// ([`LoadShares`]).
     pub(crate) fn loads_at_frames(
         &self,
         state: &ModelState,
@@ -700,122 +735,116 @@ impl FineModel {
         frames: &[Vec<Frame>],
         loads: &mut [WireLoads],
     ) {
-        let g = self.gravity * load_factor;
-        let all_frames = frames;
-        let core_segs = &self.wires[0].chain.segments;
-        let wire_loads = |(i, (((w, s), hist), l)): WireSweep<'_>| {
-            let frames = &all_frames[i];
-            l.forces.iter_mut().for_each(|f| *f = Vector3::zeros());
-            l.torques.iter_mut().for_each(|t| *t = Vector3::zeros());
-            let (spring, grav) = w.add_loads(
-                &s.poses,
-                frames,
-                &g,
+        let wire_loads = |(i, l): (usize, &mut WireLoads)| {
+            self.wire_loads_at_frames(
+                i,
+                &state.wires[i],
+                &state.contacts[i],
+                |j| &frames[j][..],
+                |k| &state.wires[0].poses[k],
                 load_factor,
-                &mut l.forces,
-                &mut l.torques,
-            );
-            l.spring_energy = spring;
-            l.gravity_energy = grav;
-            if i == 0 {
-                return;
-            }
-            let (mut ce, mut fe, mut sw) = (0.0, 0.0, 0.0);
-            let nc = w.contacts.len();
-            let (to_core, to_wires) = l.contacts.split_at_mut(nc);
-            for ((cp, h), out) in w.contacts.iter().zip(hist).zip(to_core) {
-                contact::evaluate_into(cp, h, &frames[cp.segment], &all_frames[0], core_segs, out);
-                let c = &*out;
-                l.forces[cp.segment] += c.force_wire;
-                l.torques[cp.segment] += c.torque_wire;
-                ce += c.normal_energy;
-                fe += c.tangential_energy;
-                sw += c.slip_work;
-            }
-            for ((lk, h), out) in w.links.iter().zip(&hist[nc..]).zip(to_wires.iter_mut()) {
-                let k = lk.segment;
-                *out = interlayer::evaluate(
-                    lk,
-                    h,
-                    &frames[k],
-                    w.chain.segments[k].length,
-                    &all_frames[lk.partner],
-                    &self.wires[lk.partner].chain.segments,
-                );
-            }
-            // One contact per crossing at the chords' nodes.
-            // Links held by the static solve's active set are kept as held.
-            let dropped = interlayer::duplicates(&w.links, |i| {
-                let c = &to_wires[i];
-                (c.state != ContactState::Open && hist[nc + i].hold == Hold::Free)
-                    .then(|| interlayer::centrality(c, w.chain.segments[w.links[i].segment].length))
-            });
-            for ((lk, out), drop) in w.links.iter().zip(to_wires.iter_mut()).zip(dropped) {
-                if drop {
-                    *out = ContactLoad::open_at(out.core_segment);
-                }
-                let (k, c) = (lk.segment, *out);
-                l.forces[k] += c.force_wire;
-                l.torques[k] += c.torque_wire;
-                ce += c.normal_energy;
-                fe += c.tangential_energy;
-                sw += c.slip_work;
-            }
-            l.contact_energy = ce;
-            l.friction_energy = fe;
-            l.slip_work = sw;
+                l,
+            )
         };
         if sweep::parallel() {
-            self.wires
-                .par_iter()
-                .zip(state.wires.par_iter())
-                .zip(state.contacts.par_iter())
-                .zip(loads.par_iter_mut())
-                .enumerate()
-                .for_each(wire_loads);
+            loads.par_iter_mut().enumerate().for_each(wire_loads);
         } else {
-            self.wires
-                .iter()
-                .zip(&state.wires)
-                .zip(&state.contacts)
-                .zip(loads.iter_mut())
-                .enumerate()
-                .for_each(wire_loads);
+            loads.iter_mut().enumerate().for_each(wire_loads);
         }
-        let core_poses = &state.wires[0].poses;
-        // The core's share, in a fixed order.
-        let (core, helical) = loads.split_at_mut(1);
-        let core = &mut core[0];
-        for (w, l) in self.wires[1..].iter().zip(helical.iter()) {
-            for c in &l.contacts[..w.contacts.len()] {
-                core.forces[c.core_segment] += c.force_core;
-                core.torques[c.core_segment] += c.torque_core;
-            }
+    }
+
+    /// Wire `i`'s own loads into `l` ([`FineModel::loads_at_frames`] for one wire), from its
+    /// state `s` and committed histories `hist`, every wire's frames as `frames_of` gives them
+    /// (the wire's own, the core's, its partners') and the core's segments' poses as
+    /// `core_pose` gives them (for the ties).
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn wire_loads_at_frames<'a>(
+        &self,
+        i: usize,
+        s: &WireState,
+        hist: &[ContactHistory],
+        frames_of: impl Fn(usize) -> &'a [Frame],
+        core_pose: impl Fn(usize) -> &'a Pose,
+        load_factor: f64,
+        l: &mut WireLoads,
+    ) {
+        let g = self.gravity * load_factor;
+        let core_segs = &self.wires[0].chain.segments;
+        let w = &self.wires[i];
+        let frames = frames_of(i);
+        l.forces.iter_mut().for_each(|f| *f = Vector3::zeros());
+        l.torques.iter_mut().for_each(|t| *t = Vector3::zeros());
+        let (spring, grav) = w.add_loads(
+            &s.poses,
+            frames,
+            &g,
+            load_factor,
+            &mut l.forces,
+            &mut l.torques,
+        );
+        l.spring_energy = spring;
+        l.gravity_energy = grav;
+        if i == 0 {
+            return;
         }
-        // The partners' share of the wire-to-wire contacts, in wire and link order.
-        for (i, w) in self.wires.iter().enumerate() {
-            let nc = w.contacts.len();
-            for (k, lk) in w.links.iter().enumerate() {
-                let c = loads[i].contacts[nc + k];
-                let p = &mut loads[lk.partner];
-                p.forces[c.core_segment] += c.force_core;
-                p.torques[c.core_segment] += c.torque_core;
-            }
+        let (mut ce, mut fe, mut sw) = (0.0, 0.0, 0.0);
+        let nc = w.contacts.len();
+        let (to_core, to_wires) = l.contacts.split_at_mut(nc);
+        let core_frames = frames_of(0);
+        l.core_shares.clear();
+        for ((cp, h), out) in w.contacts.iter().zip(hist).zip(to_core) {
+            contact::evaluate_into(cp, h, &frames[cp.segment], core_frames, core_segs, out);
+            let c = &*out;
+            l.core_shares.push(CoreShare {
+                segment: c.core_segment,
+                force: c.force_core,
+                torque: c.torque_core,
+            });
+            l.forces[cp.segment] += c.force_wire;
+            l.torques[cp.segment] += c.torque_wire;
+            ce += c.normal_energy;
+            fe += c.tangential_energy;
+            sw += c.slip_work;
         }
-        let (core, helical) = loads.split_at_mut(1);
-        let core = &mut core[0];
-        // Ties, in a fixed order; their energy is booked on the core.
-        for t in &self.ties {
-            let l = t.joint.evaluate(
-                &core_poses[t.core_segment],
-                &state.wires[t.wire].poses[t.segment],
+        for ((lk, h), out) in w.links.iter().zip(&hist[nc..]).zip(to_wires.iter_mut()) {
+            let k = lk.segment;
+            *out = interlayer::evaluate(
+                lk,
+                h,
+                &frames[k],
+                w.chain.segments[k].length,
+                frames_of(lk.partner),
+                &self.wires[lk.partner].chain.segments,
             );
-            core.forces[t.core_segment] += l.force_a;
-            core.torques[t.core_segment] += l.torque_a;
-            let w = &mut helical[t.wire - 1];
-            w.forces[t.segment] += l.force_b;
-            w.torques[t.segment] += l.torque_b;
-            core.spring_energy += l.energy;
+        }
+        // One contact per crossing at the chords' nodes.
+        // Links held by the static solve's active set are kept as held.
+        let dropped = interlayer::duplicates(&w.links, |i| {
+            let c = &to_wires[i];
+            (c.state != ContactState::Open && hist[nc + i].hold == Hold::Free)
+                .then(|| interlayer::centrality(c, w.chain.segments[w.links[i].segment].length))
+        });
+        for ((lk, out), drop) in w.links.iter().zip(to_wires.iter_mut()).zip(dropped) {
+            if drop {
+                *out = ContactLoad::open_at(out.core_segment);
+            }
+            let (k, c) = (lk.segment, *out);
+            l.forces[k] += c.force_wire;
+            l.torques[k] += c.torque_wire;
+            ce += c.normal_energy;
+            fe += c.tangential_energy;
+            sw += c.slip_work;
+        }
+        l.contact_energy = ce;
+        l.friction_energy = fe;
+        l.slip_work = sw;
+        l.ties.clear();
+        for t in self.ties.iter().filter(|t| t.wire == i) {
+            l.ties.push(
+                t.joint
+                    .evaluate(core_pose(t.core_segment), &s.poses[t.segment]),
+            );
         }
     }
 
@@ -940,16 +969,6 @@ pub struct ModelState {
     pub friction_work: f64,
 }
 
-/// One wire's share of the loads' sweep: its index, the wire, its state, its committed
-/// contact histories and its loads.
-type WireSweep<'a> = (
-    usize,
-    (
-        ((&'a Wire, &'a WireState), &'a Vec<ContactHistory>),
-        &'a mut WireLoads,
-    ),
-);
-
 /// Sets `frames` to the frames of `poses` ([`Frame::of`]), one for one.
 pub(crate) fn update_frames(poses: &[Pose], frames: &mut [Frame]) {
     for (f, p) in frames.iter_mut().zip(poses) {
@@ -976,9 +995,26 @@ pub struct WireLoads {
     pub friction_energy: f64,
     /// Slip work of this wire's contacts since the last commit (J).
     pub slip_work: f64,
+    /// Loads of this wire's ties to the core ([`FineModel::ties`] with this wire, in tie
+    /// order; body `a` the core segment).
+    pub ties: Vec<JointLoad>,
+    /// The core's share of this wire's contacts with the core, in contact order (the same
+    /// numbers as in `contacts`, packed: the core's loads are summed from them).
+    pub core_shares: Vec<CoreShare>,
     /// Frames of the wire's segments at the last evaluation (scratch of
     /// [`FineModel::compute_loads`]).
     pub frames: Vec<Frame>,
+}
+
+/// The load a contact with the core puts on the core.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CoreShare {
+    /// Core segment (index in the core's chain).
+    pub segment: usize,
+    /// Force on the core segment (N).
+    pub force: Vector3<f64>,
+    /// Torque on the core segment about its centre (N m).
+    pub torque: Vector3<f64>,
 }
 
 /// Energies of the model (J).

@@ -184,9 +184,9 @@ fn advance_matches_single_steps_bit_for_bit() {
 }
 
 /// `Integrator::advance` gives the same numbers, bit for bit, on one thread (its sweeps in
-/// the calling thread) and on three (the steps on one of the pool's threads, the sweeps over
-/// the wires split between the pool's threads), damped, with contacts and a ramped load;
-/// and the same as `Integrator::step`, whose sweeps always go through rayon.
+/// the calling thread) and on three (the strand cut along its length into three pieces, one
+/// per thread), damped, with contacts and a ramped load; and the same as
+/// `Integrator::step`, whose sweeps go through rayon.
 #[test]
 fn advance_does_not_depend_on_the_thread_count() {
     let mut m = model(12);
