@@ -6,19 +6,25 @@
 //! unevenly between two threads. Here every wire is cut at the same places along the strand
 //! ([`Cut`]): a thread moves and loads the segments of every wire in its piece and
 //! evaluates their contacts, so that its work is its share of the strand's, and what passes
-//! between the threads is what touches a cut: the poses of the segments next to it (the
-//! joints across it), the core's poses (each thread computes all the core's frames for its
-//! contacts' searches) and the core's shares of the contacts whose core segment lies in
-//! another piece. The threads meet twice a step at a [`SpinBarrier`]: after the drift and
-//! after the loads.
+//! between the threads is what touches a cut: the poses and frames of the segments next to
+//! it (the joints across it), the core's poses (each thread computes all the core's frames
+//! for its contacts' searches) and the core's shares of the contacts whose core segment lies
+//! in another piece. The threads meet twice a step at a [`SpinBarrier`]: after the drift and
+//! after the loads. Each piece lives in buffers its own thread allocates for the stretch:
+//! cut in place, the wires' vectors put both threads' writes on the cache lines at a cut,
+//! and the stretch took 1.14 times as long (Performance page). The cut moves after every
+//! stretch toward equal measured work ([`Cut::rebalanced`]).
 //!
 //! Each segment's arithmetic, and the order of every sum of loads on it, is the one of a
 //! single thread: a segment's joint loads in joint order ([`Chain::add_joint_loads_in`]),
 //! its contacts in contact order, the core's shares in wire and contact order (each piece's
-//! contacts precede the next piece's: a wire's contacts are listed in segment order), the
+//! contacts precede the next piece's: a wire's contacts are listed in segment order; a core
+//! segment that another piece's contacts pair with is summed again in that order), the
 //! friction loss in wire and contact order. The states are the same bit for bit on any
-//! number of threads. After the stretch each wire's energies are summed again in one piece,
-//! so that the loads are those [`Integrator::advance`] leaves on one thread.
+//! number of threads and wherever the cut. After the stretch each wire's energies are summed
+//! again in one piece, so that the loads are those [`Integrator::advance`] leaves on one
+//! thread. The commit of the contacts' histories costs no copy: a piece's contact loads take
+//! turns between two buffers, and the last evaluation's histories are the committed ones.
 //!
 //! It serves the strands of one layer (no wire-to-wire links) without ties; others step
 //! with rayon's sweeps.
@@ -33,7 +39,7 @@ use nalgebra::Vector3;
 
 use super::{Integrator, KickDriftStep, SegmentMotion, kick_drift_segments};
 use crate::chain::SegmentRun;
-use crate::contact::{self, ContactHistory, ContactLoad};
+use crate::contact::{self, ContactLoad};
 use crate::model::{CoreShare, FineModel, ModelState, update_frames};
 use crate::segment::{Frame, Pose};
 use crate::spin_barrier::{BreakOnPanic, SpinBarrier};
@@ -173,7 +179,7 @@ impl Cut {
 }
 
 /// A wire's motion in a piece: its segments' poses, velocities, angular momenta and frames
-/// and its contacts' committed histories, copied into the piece's own buffers (allocated by
+/// copied into the piece's own buffers (allocated by
 /// its thread) for the stretch, so that no cache line holds two pieces' data.
 #[derive(Debug, Default)]
 struct WireMotion {
@@ -181,20 +187,23 @@ struct WireMotion {
     velocities: Vec<Vector3<f64>>,
     angular_momenta: Vec<Vector3<f64>>,
     frames: Vec<Frame>,
-    hist: Vec<ContactHistory>,
 }
 
-/// A wire's loads in a piece, touched by the piece's thread only.
+/// A wire's loads in a piece, touched by the piece's thread only: the forces and torques on
+/// its segments, and its contacts' loads in two buffers that take turns, the last
+/// evaluation's (whose histories are the committed ones once the kick has passed: the
+/// commit costs no copy) and the one being evaluated.
 #[derive(Debug, Default)]
 struct WireLoadsPart {
     forces: Vec<Vector3<f64>>,
     torques: Vec<Vector3<f64>>,
     contacts: Vec<ContactLoad>,
+    committed: Vec<ContactLoad>,
 }
 
-/// What a piece's loads hand to the other pieces: the core's shares of its contacts, by
-/// the piece holding the core segment, each with its wire, in wire and contact order; and
-/// the slip work of each wire's contacts, in contact order (J).
+/// What a piece's loads hand to the other pieces: the core's shares of its contacts whose
+/// core segment lies in another piece, by that piece, each with its wire, in wire and
+/// contact order; and the slip work of each wire's contacts, in contact order (J).
 #[derive(Debug, Default)]
 struct Outbox {
     shares: Vec<Vec<(usize, CoreShare)>>,
@@ -263,11 +272,14 @@ pub(super) fn advance(
             s.velocities[r.clone()].copy_from_slice(&m.velocities);
             s.angular_momenta[r.clone()].copy_from_slice(&m.angular_momenta);
             int.frames[i][r.clone()].copy_from_slice(&m.frames);
-            state.contacts[i][c.clone()].copy_from_slice(&m.hist);
+            // The last evaluation, committed by the last kick.
+            for (h, e) in state.contacts[i][c.clone()].iter_mut().zip(&l.committed) {
+                *h = e.history;
+            }
             let w = &mut int.loads[i];
             w.forces[r.clone()].copy_from_slice(&l.forces);
             w.torques[r].copy_from_slice(&l.torques);
-            w.contacts[c].copy_from_slice(&l.contacts);
+            w.contacts[c].copy_from_slice(&l.committed);
         }
     }
     state.friction_work = fw;
@@ -395,13 +407,21 @@ impl Stretch<'_> {
                     velocities: s.velocities[r.clone()].to_vec(),
                     angular_momenta: s.angular_momenta[r.clone()].to_vec(),
                     frames: start.frames[i][r.clone()].to_vec(),
-                    hist: start.state.contacts[i][c.clone()].to_vec(),
                 });
                 let l = &start.loads[i];
+                let contacts = l.contacts[c.clone()].to_vec();
+                let mut committed = contacts.clone();
+                for (e, h) in committed
+                    .iter_mut()
+                    .zip(&start.state.contacts[i][c.clone()])
+                {
+                    e.history = *h;
+                }
                 own.push(WireLoadsPart {
                     forces: l.forces[r.clone()].to_vec(),
                     torques: l.torques[r.clone()].to_vec(),
-                    contacts: l.contacts[c.clone()].to_vec(),
+                    contacts,
+                    committed,
                 });
             }
             let mut outbox = self.outboxes[t].write().expect(POISONED);
@@ -427,7 +447,7 @@ impl Stretch<'_> {
         let mut core_forces = vec![Vector3::zeros(); core_range.len()];
         let mut core_torques = vec![Vector3::zeros(); core_range.len()];
         let mut core_frames = vec![Frame::default(); self.core_len];
-        let mut cursors = vec![0usize; self.cut.pieces()];
+        let mut contested: Vec<usize> = Vec::with_capacity(core_range.len());
         let mut guards: Vec<RwLockReadGuard<'_, _>> = Vec::with_capacity(self.motion.len());
         let mut boxes: Vec<RwLockReadGuard<'_, Outbox>> = Vec::with_capacity(self.outboxes.len());
         for i in 0..=self.steps {
@@ -436,19 +456,41 @@ impl Stretch<'_> {
                 let mut mine = self.motion[t].write().expect(POISONED);
                 // The core: its own loads and, once they are the pieces' own, its shares.
                 let (forces, torques) = if kd.own {
-                    core_forces.copy_from_slice(&own[0].forces);
-                    core_torques.copy_from_slice(&own[0].torques);
+                    // The core's loads with the shares of the piece's own contacts are summed
+                    // in the loads phase; a segment that contacts of another piece pair with
+                    // is summed again here, every share in wire and contact order.
                     boxes.extend(self.outboxes.iter().map(|b| b.read().expect(POISONED)));
-                    cursors.fill(0);
-                    for w in 1..model.wires.len() {
-                        for (b, at) in boxes.iter().zip(cursors.iter_mut()) {
-                            let list = &b.shares[t];
-                            while let Some((_, c)) = list.get(*at).filter(|(x, _)| *x == w) {
-                                core_forces[c.segment - core_range.start] += c.force;
-                                core_torques[c.segment - core_range.start] += c.torque;
-                                *at += 1;
+                    contested.clear();
+                    for b in &boxes {
+                        for (_, c) in &b.shares[t] {
+                            if !contested.contains(&c.segment) {
+                                contested.push(c.segment);
                             }
                         }
+                    }
+                    for &j in &contested {
+                        let k = j - core_range.start;
+                        let (mut f, mut q) = (own[0].forces[k], own[0].torques[k]);
+                        for w in 1..model.wires.len() {
+                            for (p, b) in boxes.iter().enumerate() {
+                                if p == t {
+                                    for e in own[w].committed.iter().filter(|e| e.core_segment == j)
+                                    {
+                                        f += e.force_core;
+                                        q += e.torque_core;
+                                    }
+                                } else {
+                                    for (_, c) in b.shares[t]
+                                        .iter()
+                                        .filter(|(x, c)| *x == w && c.segment == j)
+                                    {
+                                        f += c.force;
+                                        q += c.torque;
+                                    }
+                                }
+                            }
+                        }
+                        (core_forces[k], core_torques[k]) = (f, q);
                     }
                     if let Some(fw) = friction_work.as_mut() {
                         // The friction loss of the loads evaluated last (committed now), each
@@ -471,11 +513,6 @@ impl Stretch<'_> {
                     (&own[0].forces[..], &own[0].torques[..])
                 };
                 for (i, (m, l)) in mine.iter_mut().zip(&own).enumerate() {
-                    if !kd.first {
-                        for (h, c) in m.hist.iter_mut().zip(l.contacts.iter()) {
-                            *h = c.history;
-                        }
-                    }
                     let (f, q) = if i == 0 {
                         (forces, torques)
                     } else {
@@ -547,10 +584,13 @@ impl Stretch<'_> {
                     let slip = &mut outbox.slip[i];
                     slip.clear();
                     if i == 0 {
+                        core_forces.copy_from_slice(&l.forces);
+                        core_torques.copy_from_slice(&l.torques);
                         continue;
                     }
                     let cps = &w.contacts[contacts[i].clone()];
-                    for ((cp, h), out) in cps.iter().zip(m.hist.iter()).zip(l.contacts.iter_mut()) {
+                    let hist = l.committed.iter().map(|e| &e.history);
+                    for ((cp, h), out) in cps.iter().zip(hist).zip(l.contacts.iter_mut()) {
                         let k = cp.segment - a;
                         contact::evaluate_into(cp, h, &m.frames[k], &core_frames, core_segs, out);
                         l.forces[k] += out.force_wire;
@@ -558,18 +598,21 @@ impl Stretch<'_> {
                         slip.push(out.slip_work);
                     }
                     for out in l.contacts.iter() {
-                        let share = CoreShare {
-                            segment: out.core_segment,
-                            force: out.force_core,
-                            torque: out.torque_core,
-                        };
-                        let p = if core_range.contains(&share.segment) {
-                            t
+                        let j = out.core_segment;
+                        if core_range.contains(&j) {
+                            core_forces[j - core_range.start] += out.force_core;
+                            core_torques[j - core_range.start] += out.torque_core;
                         } else {
-                            self.cut.piece_of(0, share.segment)
-                        };
-                        outbox.shares[p].push((i, share));
+                            let share = CoreShare {
+                                segment: j,
+                                force: out.force_core,
+                                torque: out.torque_core,
+                            };
+                            outbox.shares[self.cut.piece_of(0, j)].push((i, share));
+                        }
                     }
+                    // The evaluation just made is the one the next kick commits.
+                    std::mem::swap(&mut l.contacts, &mut l.committed);
                 }
                 drop(outbox);
                 guards.clear();
