@@ -403,6 +403,8 @@ fn draw(
     let panel = |kmax: f64, title: &str, stick: bool| -> anyhow::Result<Chart> {
         let kappa: Vec<f64> = (1..=200).map(|i| kmax * i as f64 / 200.0).collect();
         let mut series = Vec::new();
+        // The fitted curve is the default law's, named from the default.
+        let default = format!("law, {}", SlipPressure::default());
         let picks = [
             ("law, accumulated", false, Mark::Line, 0),
             ("law, two_faces", false, Mark::Line, 5),
@@ -410,7 +412,7 @@ fn draw(
             ("classical, SC1 (Papailiou)", false, Mark::Dashed, 3),
             ("classical, accumulated", false, Mark::Dashed, 2),
             ("classical, Foti", false, Mark::Dashed, 6),
-            ("law, two_faces", true, Mark::Dashed, 4),
+            (default.as_str(), true, Mark::Dashed, 4),
         ];
         for (name, fitted, mark, color) in picks {
             let r = rows
