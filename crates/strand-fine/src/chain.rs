@@ -195,14 +195,7 @@ impl Chain {
         forces: &mut [Vector3<f64>],
         torques: &mut [Vector3<f64>],
     ) -> f64 {
-        let run = SegmentRun {
-            first: 0,
-            poses,
-            frames,
-            before: None,
-            after: None,
-        };
-        self.add_joint_loads_in(&run, forces, torques)
+        self.add_joint_loads_in(&SegmentRun::whole(poses, frames), forces, torques)
     }
 
     /// [`Chain::add_joint_loads`] on a run of segments only: the loads of every joint
@@ -268,6 +261,19 @@ pub struct SegmentRun<'a> {
     pub before: Option<(&'a Pose, &'a Frame)>,
     /// Pose and frame of the segment after the run.
     pub after: Option<(&'a Pose, &'a Frame)>,
+}
+
+impl<'a> SegmentRun<'a> {
+    /// The run of a whole chain at poses `poses` with frames `frames`.
+    pub fn whole(poses: &'a [Pose], frames: &'a [Frame]) -> Self {
+        Self {
+            first: 0,
+            poses,
+            frames,
+            before: None,
+            after: None,
+        }
+    }
 }
 
 /// Length of a helix of radius `radius` and pitch `pitch` over the axial length `length` (m).

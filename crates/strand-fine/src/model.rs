@@ -134,13 +134,7 @@ impl Wire {
         forces: &mut [Vector3<f64>],
         torques: &mut [Vector3<f64>],
     ) -> (f64, f64) {
-        let run = SegmentRun {
-            first: 0,
-            poses,
-            frames,
-            before: None,
-            after: None,
-        };
+        let run = SegmentRun::whole(poses, frames);
         self.add_loads_in(&run, gravity, load_factor, forces, torques)
     }
 

@@ -314,13 +314,7 @@ fn finish_loads(int: &mut Integrator, model: &FineModel, state: &ModelState) {
         .enumerate()
     {
         let m = w.chain.len();
-        let run = SegmentRun {
-            first: 0,
-            poses: &s.poses,
-            frames: &int.frames[i],
-            before: None,
-            after: None,
-        };
+        let run = SegmentRun::whole(&s.poses, &int.frames[i]);
         let (spring, grav) = w.add_loads_in(&run, &g, int.load_factor, &mut f[..m], &mut t[..m]);
         l.spring_energy = spring;
         l.gravity_energy = grav;
