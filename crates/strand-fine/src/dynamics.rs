@@ -14,15 +14,15 @@ use rayon::prelude::*;
 
 use crate::contact::ContactHistory;
 use crate::load_share::LoadShares;
+use crate::model::{Energies, FineModel, ModelState, WireLoads, WireState, update_frames};
+use crate::segment::{Frame, Pose, Segment};
+use crate::sweep;
 
 mod partition;
 
 /// Fewest steps of an [`Integrator::advance`] that run on threads holding a piece of the
 /// strand each ([`partition`]): a stretch starts a thread per piece.
 const PARTITION_MIN_STEPS: u64 = 8;
-use crate::model::{Energies, FineModel, ModelState, WireLoads, WireState, update_frames};
-use crate::segment::{Frame, Pose, Segment};
-use crate::sweep;
 
 /// `B = M^{-1/2}` block by block at `state`, one 6 x 6 block per segment: `m^{-1/2} I` on its
 /// translations (kg^-1/2) and `R I^{-1/2} R^T` on its rotations (kg^-1/2 m^-1; the world
@@ -109,8 +109,8 @@ pub fn stable_time_step(model: &FineModel, state: &ModelState, safety: f64) -> f
     safety * MOTION_FACTOR * 2.0 / highest_frequency(model, state)
 }
 
-/// One wire's share of a kick-drift sweep: the wire, its state, its committed contact
-/// histories, its loads and its segments' frames.
+/// One wire's share of a kick-drift sweep: its index, its state, its committed contact
+/// histories, its segments' frames and its buffers of the loads with the shares added.
 type KickDrift<'a> = (
     usize,
     (
@@ -252,14 +252,13 @@ impl Integrator {
         load_factor: &(dyn Fn(f64) -> f64 + Sync),
         parallel: bool,
     ) {
-        let kd = KickDriftStep {
+        let mut kd = KickDriftStep {
             dt: self.dt,
             damp: (-self.damping_rate * self.dt).exp(),
             first: true,
             last: false,
             own: false,
         };
-        let mut kd = kd;
         for i in 0..=steps {
             // Commit (the previous step's), kick (the previous step's second half and this
             // step's first), then drift and frames; after the last step, commit and the
@@ -270,17 +269,7 @@ impl Integrator {
             } = &mut *state;
             let (all_loads, shares) = (&self.loads, &self.shares);
             let kick_drift = |(wi, (((s, hist), frames), shared)): KickDrift<'_>| {
-                kick_drift_wire(
-                    model,
-                    shares,
-                    |j| &all_loads[j],
-                    wi,
-                    s,
-                    hist,
-                    frames,
-                    shared,
-                    &kd,
-                );
+                kick_drift_wire(model, shares, all_loads, wi, s, hist, frames, shared, &kd);
             };
             if parallel {
                 wires
@@ -343,14 +332,14 @@ struct KickDriftStep {
 }
 
 /// One wire's share of a kick-drift sweep: wire `wi`'s commit of its contact histories, its
-/// kicks with the loads `loads(wi)` (and its shares of the other wires' loads), its drift and
+/// kicks with the loads `loads[wi]` (and its shares of the other wires' loads), its drift and
 /// its frames at the new poses.
 #[allow(clippy::too_many_arguments)]
 #[inline]
-fn kick_drift_wire<'a>(
+fn kick_drift_wire(
     model: &FineModel,
     shares: &LoadShares,
-    loads: impl Fn(usize) -> &'a WireLoads,
+    loads: &[WireLoads],
     wi: usize,
     s: &mut WireState,
     hist: &mut [ContactHistory],
@@ -358,7 +347,7 @@ fn kick_drift_wire<'a>(
     shared: &mut Shared,
     kd: &KickDriftStep,
 ) {
-    let (w, l) = (&model.wires[wi], loads(wi));
+    let (w, l) = (&model.wires[wi], &loads[wi]);
     if !kd.first {
         for (hi, c) in hist.iter_mut().zip(&l.contacts) {
             *hi = c.history;
@@ -368,7 +357,7 @@ fn kick_drift_wire<'a>(
         let (f, t) = shared;
         f.copy_from_slice(&l.forces);
         t.copy_from_slice(&l.torques);
-        shares.add_to(model, wi, 0..f.len(), &loads, f, t, &mut 0.0);
+        shares.add_to(model, wi, loads, f, t, &mut 0.0);
         (&f[..], &t[..])
     } else {
         (&l.forces[..], &l.torques[..])

@@ -11,8 +11,6 @@
 //! ([`crate::dynamics::Integrator::advance`]), so that no serial pass separates the two
 //! sweeps of a step. Both go through [`LoadShares::add_to`]: the same arithmetic, bit for bit.
 
-use std::ops::Range;
-
 use nalgebra::Vector3;
 
 use crate::model::{FineModel, WireLoads};
@@ -62,51 +60,40 @@ impl LoadShares {
     }
 
     /// Adds to wire `w`'s `forces` (N), `torques` (N m) and `spring_energy` (J) the shares of
-    /// the other wires' contacts and ties evaluated in `loads(i)` (wire `i`'s loads) that
-    /// act on its segments `segments` (`forces` and `torques` indexed from
-    /// `segments.start`; the tie energies are booked on the core, with the tie's core
-    /// segment). Each segment receives its shares in the same order whatever the range.
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn add_to<'a>(
+    /// the other wires' contacts and ties evaluated in `loads` (the tie energies are booked
+    /// on the core).
+    pub(crate) fn add_to(
         &self,
         model: &FineModel,
         w: usize,
-        segments: Range<usize>,
-        loads: impl Fn(usize) -> &'a WireLoads,
+        loads: &[WireLoads],
         forces: &mut [Vector3<f64>],
         torques: &mut [Vector3<f64>],
         spring_energy: &mut f64,
     ) {
-        let a = segments.start;
         if w == 0 && self.core_contacts {
-            for i in 1..model.wires.len() {
-                for c in &loads(i).core_shares {
-                    if segments.contains(&c.segment) {
-                        forces[c.segment - a] += c.force;
-                        torques[c.segment - a] += c.torque;
-                    }
+            for l in &loads[1..] {
+                for c in &l.core_shares {
+                    forces[c.segment] += c.force;
+                    torques[c.segment] += c.torque;
                 }
             }
         }
         for &(i, k) in &self.links[w] {
-            let c = &loads(i).contacts[model.wires[i].contacts.len() + k];
-            if segments.contains(&c.core_segment) {
-                forces[c.core_segment - a] += c.force_core;
-                torques[c.core_segment - a] += c.torque_core;
-            }
+            let c = &loads[i].contacts[model.wires[i].contacts.len() + k];
+            forces[c.core_segment] += c.force_core;
+            torques[c.core_segment] += c.torque_core;
         }
         for &(tie, slot) in &self.ties[w] {
             let t = &model.ties[tie];
-            let l = &loads(t.wire).ties[slot];
+            let l = &loads[t.wire].ties[slot];
             if w == 0 {
-                if segments.contains(&t.core_segment) {
-                    forces[t.core_segment - a] += l.force_a;
-                    torques[t.core_segment - a] += l.torque_a;
-                    *spring_energy += l.energy;
-                }
-            } else if segments.contains(&t.segment) {
-                forces[t.segment - a] += l.force_b;
-                torques[t.segment - a] += l.torque_b;
+                forces[t.core_segment] += l.force_a;
+                torques[t.core_segment] += l.torque_a;
+                *spring_energy += l.energy;
+            } else {
+                forces[t.segment] += l.force_b;
+                torques[t.segment] += l.torque_b;
             }
         }
     }
@@ -120,16 +107,7 @@ impl LoadShares {
             let mut forces = std::mem::take(&mut loads[w].forces);
             let mut torques = std::mem::take(&mut loads[w].torques);
             let mut energy = loads[w].spring_energy;
-            let n = forces.len();
-            self.add_to(
-                model,
-                w,
-                0..n,
-                |i| &loads[i],
-                &mut forces,
-                &mut torques,
-                &mut energy,
-            );
+            self.add_to(model, w, loads, &mut forces, &mut torques, &mut energy);
             let l = &mut loads[w];
             (l.forces, l.torques, l.spring_energy) = (forces, torques, energy);
         }

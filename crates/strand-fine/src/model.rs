@@ -734,8 +734,8 @@ impl FineModel {
                 i,
                 &state.wires[i],
                 &state.contacts[i],
-                |j| &frames[j][..],
-                |k| &state.wires[0].poses[k],
+                frames,
+                &state.wires[0].poses,
                 load_factor,
                 l,
             )
@@ -748,25 +748,25 @@ impl FineModel {
     }
 
     /// Wire `i`'s own loads into `l` ([`FineModel::loads_at_frames`] for one wire), from its
-    /// state `s` and committed histories `hist`, every wire's frames as `frames_of` gives them
-    /// (the wire's own, the core's, its partners') and the core's segments' poses as
-    /// `core_pose` gives them (for the ties).
+    /// state `s`, its committed histories `hist`, every wire's frames `frames` (the wire's
+    /// own, the core's, its partners') and the core's poses `core_poses` (for the ties).
     #[inline]
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn wire_loads_at_frames<'a>(
+    pub(crate) fn wire_loads_at_frames(
         &self,
         i: usize,
         s: &WireState,
         hist: &[ContactHistory],
-        frames_of: impl Fn(usize) -> &'a [Frame],
-        core_pose: impl Fn(usize) -> &'a Pose,
+        frames: &[Vec<Frame>],
+        core_poses: &[Pose],
         load_factor: f64,
         l: &mut WireLoads,
     ) {
         let g = self.gravity * load_factor;
         let core_segs = &self.wires[0].chain.segments;
         let w = &self.wires[i];
-        let frames = frames_of(i);
+        let all_frames = frames;
+        let frames = &all_frames[i];
         l.forces.iter_mut().for_each(|f| *f = Vector3::zeros());
         l.torques.iter_mut().for_each(|t| *t = Vector3::zeros());
         let (spring, grav) = w.add_loads(
@@ -785,7 +785,7 @@ impl FineModel {
         let (mut ce, mut fe, mut sw) = (0.0, 0.0, 0.0);
         let nc = w.contacts.len();
         let (to_core, to_wires) = l.contacts.split_at_mut(nc);
-        let core_frames = frames_of(0);
+        let core_frames = &all_frames[0];
         l.core_shares.clear();
         for ((cp, h), out) in w.contacts.iter().zip(hist).zip(to_core) {
             contact::evaluate_into(cp, h, &frames[cp.segment], core_frames, core_segs, out);
@@ -808,7 +808,7 @@ impl FineModel {
                 h,
                 &frames[k],
                 w.chain.segments[k].length,
-                frames_of(lk.partner),
+                &all_frames[lk.partner],
                 &self.wires[lk.partner].chain.segments,
             );
         }
@@ -837,7 +837,7 @@ impl FineModel {
         for t in self.ties.iter().filter(|t| t.wire == i) {
             l.ties.push(
                 t.joint
-                    .evaluate(core_pose(t.core_segment), &s.poses[t.segment]),
+                    .evaluate(&core_poses[t.core_segment], &s.poses[t.segment]),
             );
         }
     }
